@@ -1,0 +1,127 @@
+#include "commands.hpp"
+
+#include <medax/kernel/pipeline.hpp>
+#include <medax/kernel/registry.hpp>
+#include <medax/kernel/runner.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace medax::cli {
+
+namespace {
+
+void print_load_errors(const Registry& registry) {
+  for (const std::string& e : registry.errors()) fmt::print(stderr, "error: {}\n", e);
+}
+
+std::size_t widest(const std::vector<std::vector<std::string>>& rows, std::size_t column) {
+  std::size_t w = 0;
+  for (const auto& row : rows) w = std::max(w, row[column].size());
+  return w;
+}
+
+void print_table(const std::vector<std::vector<std::string>>& rows) {
+  std::vector<std::size_t> widths;
+  for (std::size_t c = 0; c < rows.front().size(); ++c) widths.push_back(widest(rows, c));
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      line += c + 1 == row.size() ? row[c] : fmt::format("{:<{}}  ", row[c], widths[c]);
+    fmt::print("{}\n", line);
+  }
+}
+
+std::string default_run_dir(const PipelineConfig& config) {
+  return fmt::format("medax-runs/{}-{}", config.name, config.input.stem().string());
+}
+
+/// Loads and validates; prints diagnostics and returns nullopt on failure.
+std::optional<PipelineConfig> load(const RunArgs& args, const Registry& registry) {
+  try {
+    return load_pipeline(args.pipeline, registry, Overrides{args.input, args.settings});
+  } catch (const PipelineError& e) {
+    for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());
+    if (!registry.errors().empty()) {
+      fmt::print(stderr, "note: some plugins could not be loaded:\n");
+      print_load_errors(registry);
+    }
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+int list_plugins() {
+  Registry& registry = Registry::global();
+  std::vector<std::vector<std::string>> rows{{"ROLE", "NAME", "PACKAGE", "VERSION", "SUMMARY"}};
+  for (const RegisteredStage* s : registry.stages())
+    rows.push_back({std::string(to_string(s->info().role)), s->info().name, s->package->name, s->package->version,
+                    s->info().summary});
+  if (rows.size() == 1) {
+    fmt::print("no stages found; plugin folders searched:\n");
+    for (const auto& dir : Registry::search_path()) fmt::print("  {}\n", dir.string());
+  } else {
+    print_table(rows);
+  }
+  print_load_errors(registry);
+  return registry.errors().empty() ? 0 : 2;
+}
+
+int describe(const std::string& name) {
+  Registry& registry = Registry::global();
+  const RegisteredStage* s = registry.find(name);
+  if (!s) {
+    std::string hint;
+    for (const std::string& n : registry.suggest(name)) hint += (hint.empty() ? " (did you mean " : ", ") + n;
+    fmt::print(stderr, "error: no stage named '{}'{}; `medax plugins` lists them\n", name,
+               hint.empty() ? "" : hint + "?)");
+    return 2;
+  }
+  const StageInfo& info = s->info();
+  fmt::print("{} ({} stage, package {} {})\n  {}\n", info.name, to_string(info.role), s->package->name,
+             s->package->version, info.summary);
+  if (!info.doc.empty()) fmt::print("  docs: {}\n", info.doc);
+  if (info.params.empty()) {
+    fmt::print("\nno parameters\n");
+    return 0;
+  }
+  fmt::print("\n");
+  std::vector<std::vector<std::string>> rows{{"PARAMETER", "TYPE", "DEFAULT", "RANGE", "UNIT", "DOC"}};
+  for (const ParamSpec& p : info.params)
+    rows.push_back({p.name, std::string(to_string(p.type)), p.default_text(), p.range_text(), p.unit, p.doc});
+  print_table(rows);
+  return 0;
+}
+
+int validate(const RunArgs& args) {
+  Registry& registry = Registry::global();
+  auto config = load(args, registry);
+  if (!config) return 2;
+  fmt::print("{}: valid ({} stages: ", args.pipeline.string(), config->stages.size());
+  for (std::size_t i = 0; i < config->stages.size(); ++i)
+    fmt::print("{}{}", i ? " -> " : "", config->stages[i].id);
+  fmt::print(")\n");
+  return 0;
+}
+
+int run(const RunArgs& args) {
+  Registry& registry = Registry::global();
+  auto config = load(args, registry);
+  if (!config) return 2;
+  RunOptions options;
+  options.out_dir = args.out.empty() ? std::filesystem::path(default_run_dir(*config)) : args.out;
+  options.quiet = args.quiet;
+  const RunResult result = run_pipeline(*config, options);
+  if (!result.ok) {
+    fmt::print(stderr, "error: stage '{}' failed: {}\n(see {}/log.txt)\n", result.failed_stage, result.error,
+               result.out_dir.string());
+    return 1;
+  }
+  fmt::print("results: {}\n", std::filesystem::absolute(result.out_dir).lexically_normal().string());
+  return 0;
+}
+
+}  // namespace medax::cli

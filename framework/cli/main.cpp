@@ -1,0 +1,37 @@
+// medax: run, validate and inspect medial-axis pipelines.
+#include "commands.hpp"
+
+#include <medax/version.hpp>
+
+#include <CLI/CLI.hpp>
+
+int main(int argc, char** argv) {
+  CLI::App app{"medax: compute, simplify, structure and evaluate 3D medial axes"};
+  app.set_version_flag("--version", std::string(medax::kVersion));
+  app.require_subcommand(1);
+
+  auto* plugins = app.add_subcommand("plugins", "List every stage: role, name, package, version, summary");
+
+  std::string name;
+  auto* describe = app.add_subcommand("describe", "Print a stage's parameters");
+  describe->add_option("NAME", name, "Stage name (see `medax plugins`)")->required();
+
+  medax::cli::RunArgs args;
+  const auto add_pipeline_options = [&](CLI::App* cmd) {
+    cmd->add_option("PIPELINE", args.pipeline, "Pipeline YAML file")->required();
+    cmd->add_option("--input,-i", args.input, "Input mesh (replaces the pipeline's `input:`)");
+    cmd->add_option("--set,-s", args.settings, "Override a parameter: STAGE.PARAM=VALUE (STAGE is the stage id)");
+  };
+  auto* validate = app.add_subcommand("validate", "Check a pipeline without running it");
+  add_pipeline_options(validate);
+  auto* run = app.add_subcommand("run", "Run a pipeline into a run folder");
+  add_pipeline_options(run);
+  run->add_option("--out,-o", args.out, "Run folder (default: medax-runs/<pipeline>-<input>)");
+  run->add_flag("--quiet,-q", args.quiet, "Only errors on the terminal (log.txt has everything)");
+
+  CLI11_PARSE(app, argc, argv);
+  if (plugins->parsed()) return medax::cli::list_plugins();
+  if (describe->parsed()) return medax::cli::describe(name);
+  if (validate->parsed()) return medax::cli::validate(args);
+  return medax::cli::run(args);
+}

@@ -1,0 +1,27 @@
+#pragma once
+// Runs a validated pipeline into a run folder.
+#include <medax/kernel/pipeline.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace medax {
+
+struct RunOptions {
+  std::filesystem::path out_dir;  ///< created if missing
+  bool quiet = false;             ///< no log lines on stderr
+};
+
+struct RunResult {
+  bool ok = false;
+  std::string failed_stage;  ///< id of the stage that threw
+  std::string error;
+  std::filesystem::path out_dir;
+};
+
+/// Runs every stage in order, writing config.resolved.yaml, log.txt, metrics.json,
+/// timings.json and the configured outputs. A stage that throws stops the run; the outputs of
+/// the stages completed before it are still written.
+RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options);
+
+}  // namespace medax

@@ -1,0 +1,17 @@
+#include <medax/context.hpp>
+
+#include <iostream>
+
+namespace medax {
+
+Context::~Context() = default;
+
+BasicContext::BasicContext(std::uint64_t seed, bool verbose)
+    : seed_(seed), verbose_(verbose), rng_(seed) {}
+
+void BasicContext::info(std::string_view message) {
+  if (verbose_) std::cerr << message << '\n';
+}
+void BasicContext::warn(std::string_view message) { std::cerr << "warning: " << message << '\n'; }
+
+}  // namespace medax

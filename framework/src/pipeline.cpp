@@ -1,0 +1,416 @@
+// Reading and validating pipeline YAML. Every problem is collected (not only the first), each
+// with file:line:column and what to do, before any work starts.
+#include <medax/kernel/pipeline.hpp>
+
+#include "suggest.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+
+namespace medax {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kTopKeys{"medax", "name", "seed", "input", "medial_input", "stages", "outputs"};
+const std::vector<std::string> kStageKeys{"plugin", "id", "params"};
+const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
+const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};
+const std::vector<std::string> kSurfaceFormats{"off", "obj", "ply", "stl"};
+
+/// Collects diagnostics against one file; nodes from --set carry their own origin.
+class Checker {
+ public:
+  explicit Checker(std::string file) : file_(std::move(file)) {}
+
+  void error(const YAML::Node& at, std::string message) {
+    Diagnostic d{file_, 0, 0, std::move(message)};
+    for (const auto& [node, where] : overridden_)
+      if (node.is(at)) {
+        d.file = where;  // a value given with --set has no position in the file
+        diagnostics_.push_back(std::move(d));
+        return;
+      }
+    if (at.IsDefined() && !at.Mark().is_null()) {
+      d.line = at.Mark().line + 1;
+      d.column = at.Mark().column + 1;
+    }
+    diagnostics_.push_back(std::move(d));
+  }
+  void mark_overridden(const YAML::Node& node, std::string where) {
+    overridden_.emplace_back(node, std::move(where));
+  }
+  void error_at(const std::string& where, std::string message) {
+    diagnostics_.push_back(Diagnostic{where, 0, 0, std::move(message)});
+  }
+  bool ok() const { return diagnostics_.empty(); }
+  std::vector<Diagnostic> take() { return std::move(diagnostics_); }
+  const std::string& file() const { return file_; }
+
+  void unknown_keys(const YAML::Node& map, const std::vector<std::string>& known, const char* what) {
+    for (const auto& kv : map) {
+      const std::string key = kv.first.as<std::string>();
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        error(kv.first, fmt::format("unknown {} key '{}'{}; known keys: {}", what, key,
+                                    detail::did_you_mean(detail::closest_names(key, known)),
+                                    fmt::join(known, ", ")));
+    }
+  }
+
+ private:
+  std::string file_;
+  std::vector<std::pair<YAML::Node, std::string>> overridden_;
+  std::vector<Diagnostic> diagnostics_;
+};
+
+std::optional<std::string> scalar(Checker& check, const YAML::Node& node, const char* what) {
+  if (!node.IsScalar()) {
+    check.error(node, fmt::format("{} must be a single value", what));
+    return std::nullopt;
+  }
+  return node.Scalar();
+}
+
+std::optional<double> parse_real(const std::string& s) {
+  if (s == ".inf" || s == "inf" || s == "+.inf") return INFINITY;
+  if (s == "-.inf" || s == "-inf") return -INFINITY;
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used == s.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+std::optional<long long> parse_int(const std::string& s) {
+  try {
+    std::size_t used = 0;
+    const long long v = std::stoll(s, &used, 10);
+    if (used == s.size()) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+std::optional<bool> parse_bool(const std::string& s) {
+  if (s == "true" || s == "yes" || s == "on" || s == "True" || s == "TRUE") return true;
+  if (s == "false" || s == "no" || s == "off" || s == "False" || s == "FALSE") return false;
+  return std::nullopt;
+}
+
+class Validator {
+ public:
+  Validator(Checker& check, const Registry& registry) : check_(check), registry_(registry) {}
+
+  /// Validates a stage entry (map with plugin/id/params, or a bare plugin name for nested
+  /// stages) and creates its configured instance. Returns nullopt when invalid.
+  std::optional<StageConfig> stage(const YAML::Node& node, std::optional<Role> required_role) {
+    YAML::Node plugin_node, params_node;
+    StageConfig config;
+    if (node.IsScalar() && required_role) {
+      plugin_node = node;
+    } else if (node.IsMap()) {
+      check_.unknown_keys(node, kStageKeys, "stage");
+      plugin_node = node["plugin"];
+      params_node = node["params"];
+      if (node["id"]) {
+        if (auto id = scalar(check_, node["id"], "`id`")) config.id = *id;
+      }
+    } else {
+      check_.error(node, "a stage is a map with `plugin:` (and optional `id:`, `params:`)");
+      return std::nullopt;
+    }
+    if (!plugin_node) {
+      check_.error(node, "this stage has no `plugin:`; add `plugin: NAME` (see `medax plugins`)");
+      return std::nullopt;
+    }
+    const auto name = scalar(check_, plugin_node, "`plugin`");
+    if (!name) return std::nullopt;
+    const RegisteredStage* registered = registry_.find(*name);
+    if (!registered) {
+      check_.error(plugin_node, fmt::format("unknown plugin '{}'{}; `medax plugins` lists them", *name,
+                                            detail::did_you_mean(registry_.suggest(*name))));
+      return std::nullopt;
+    }
+    const StageInfo& info = registered->info();
+    if (required_role && info.role != *required_role) {
+      check_.error(plugin_node, fmt::format("'{}' is a {} stage but this parameter needs a {} stage", *name,
+                                            to_string(info.role), to_string(*required_role)));
+      return std::nullopt;
+    }
+    config.plugin = *name;
+    config.role = info.role;
+    if (config.id.empty()) config.id = *name;
+    bool ok = true;
+    if (params_node && !params_node.IsNull()) {
+      if (!params_node.IsMap()) {
+        check_.error(params_node, "`params:` must be a map of NAME: VALUE");
+        ok = false;
+      } else {
+        std::vector<std::string> declared;
+        for (const ParamSpec& spec : info.params) declared.push_back(spec.name);
+        for (const auto& kv : params_node) {
+          const std::string key = kv.first.as<std::string>();
+          if (std::find(declared.begin(), declared.end(), key) == declared.end()) {
+            check_.error(kv.first, fmt::format("'{}' has no parameter '{}'{}; `medax describe {}` lists its parameters",
+                                               *name, key, detail::did_you_mean(detail::closest_names(key, declared)),
+                                               *name));
+            ok = false;
+          }
+        }
+      }
+    }
+    for (const ParamSpec& spec : info.params) {
+      YAML::Node value = params_node && params_node.IsMap() ? params_node[spec.name] : YAML::Node();
+      std::optional<ParamValue> v = value ? parse(spec, value, *name) : default_of(spec, node);
+      if (v) config.params.set(spec.name, std::move(*v));
+      else ok = false;
+    }
+    if (!ok) return std::nullopt;
+    config.instance = std::shared_ptr<Stage>(registered->entry.create());
+    config.instance->set_id(config.id);
+    config.instance->configure(config.params);
+    return config;
+  }
+
+ private:
+  std::optional<ParamValue> default_of(const ParamSpec& spec, const YAML::Node& owner) {
+    if (spec.type != ParamType::Stage) return spec.default_value;
+    YAML::Node name(std::get<std::string>(spec.default_value));
+    auto nested = stage(name, spec.stage_role);
+    if (!nested) {
+      check_.error(owner, fmt::format("the default '{}' for parameter '{}' is not available; give one explicitly",
+                                      name.Scalar(), spec.name));
+      return std::nullopt;
+    }
+    return make_ref(std::move(*nested));
+  }
+
+  static ParamValue make_ref(StageConfig nested) {
+    auto ref = std::make_shared<StageRef>();
+    ref->plugin = nested.plugin;
+    ref->params = std::move(nested.params);
+    ref->instance = std::move(nested.instance);
+    return ref;
+  }
+
+  std::optional<ParamValue> parse(const ParamSpec& spec, const YAML::Node& node, const std::string& plugin) {
+    const std::string label = fmt::format("parameter '{}' of '{}'", spec.name, plugin);
+    if (spec.type == ParamType::Stage) {
+      auto nested = stage(node, spec.stage_role);
+      if (!nested) return std::nullopt;
+      return make_ref(std::move(*nested));
+    }
+    if (!node.IsScalar()) {
+      check_.error(node, fmt::format("{} must be a single {} value", label, to_string(spec.type)));
+      return std::nullopt;
+    }
+    const std::string& text = node.Scalar();
+    const auto mistyped = [&]() -> std::optional<ParamValue> {
+      check_.error(node, fmt::format("{} must be {} but is '{}'", label,
+                                     spec.type == ParamType::Int ? "a whole number"
+                                     : spec.type == ParamType::Real ? "a number"
+                                                                    : "true or false",
+                                     text));
+      return std::nullopt;
+    };
+    const auto in_range = [&](double v) {
+      if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
+        check_.error(node, fmt::format("{} is {} but must be {}", label, text, spec.range_text()));
+        return false;
+      }
+      return true;
+    };
+    switch (spec.type) {
+      case ParamType::Bool: {
+        auto b = parse_bool(text);
+        if (!b) return mistyped();
+        return *b;
+      }
+      case ParamType::Int: {
+        auto i = parse_int(text);
+        if (!i) return mistyped();
+        if (!in_range(static_cast<double>(*i))) return std::nullopt;
+        return *i;
+      }
+      case ParamType::Real: {
+        auto r = parse_real(text);
+        if (!r) return mistyped();
+        if (!in_range(*r)) return std::nullopt;
+        return *r;
+      }
+      case ParamType::Choice:
+        if (std::find(spec.choices.begin(), spec.choices.end(), text) == spec.choices.end()) {
+          check_.error(node, fmt::format("{} is '{}' but must be {}{}", label, text, spec.range_text(),
+                                         detail::did_you_mean(detail::closest_names(text, spec.choices))));
+          return std::nullopt;
+        }
+        return text;
+      case ParamType::String:
+        return text;
+      case ParamType::Stage:
+        break;
+    }
+    return std::nullopt;
+  }
+
+  Checker& check_;
+  const Registry& registry_;
+};
+
+fs::path resolve_path(const fs::path& base_dir, const std::string& text) {
+  fs::path p(text);
+  if (p.is_relative()) p = base_dir / p;
+  return fs::absolute(p).lexically_normal();
+}
+
+void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& check) {
+  for (const std::string& setting : overrides.settings) {
+    const std::string where = fmt::format("--set {}", setting);
+    const auto eq = setting.find('=');
+    const auto dot = setting.find('.');
+    if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
+      check.error_at(where, "expected STAGE.PARAM=VALUE, STAGE being a stage id (default: its plugin name)");
+      continue;
+    }
+    const std::string stage_id = setting.substr(0, dot);
+    const std::string param = setting.substr(dot + 1, eq - dot - 1);
+    const std::string value = setting.substr(eq + 1);
+    bool found = false;
+    std::vector<std::string> ids;
+    if (root["stages"] && root["stages"].IsSequence()) {
+      for (YAML::Node stage : root["stages"]) {
+        if (!stage.IsMap()) continue;
+        const std::string id = stage["id"] ? stage["id"].as<std::string>()
+                               : stage["plugin"] ? stage["plugin"].as<std::string>() : std::string();
+        ids.push_back(id);
+        if (id != stage_id) continue;
+        found = true;
+        YAML::Node params = stage["params"];
+        if (!params || params.IsNull()) params = YAML::Node(YAML::NodeType::Map);
+        YAML::Node parsed = YAML::Load(value);
+        params[param] = parsed;
+        stage["params"] = params;
+        check.mark_overridden(parsed, where);
+      }
+    }
+    if (!found)
+      check.error_at(where, fmt::format("no stage with id '{}'{}", stage_id,
+                                        detail::did_you_mean(detail::closest_names(stage_id, ids))));
+  }
+}
+
+std::vector<std::string> formats(Checker& check, const YAML::Node& node, const std::vector<std::string>& allowed,
+                                 const char* what) {
+  std::vector<std::string> out;
+  const auto add = [&](const YAML::Node& n) {
+    if (!n.IsScalar()) return check.error(n, fmt::format("{} formats are names like {}", what, allowed[0]));
+    if (std::find(allowed.begin(), allowed.end(), n.Scalar()) == allowed.end())
+      return check.error(n, fmt::format("unknown {} format '{}'; use {}", what, n.Scalar(), fmt::join(allowed, ", ")));
+    out.push_back(n.Scalar());
+  };
+  if (node.IsSequence()) for (const auto& n : node) add(n);
+  else add(node);
+  return out;
+}
+
+}  // namespace
+
+PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, const Overrides& overrides) {
+  Checker check(file.string());
+  if (!fs::exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::Exception& e) {
+    throw PipelineError({Diagnostic{file.string(), e.mark.line + 1, e.mark.column + 1,
+                                    "not valid YAML: " + e.msg}});
+  }
+  if (!root.IsMap())
+    throw PipelineError({Diagnostic{file.string(), 1, 1, "a pipeline is a YAML map with `input:` and `stages:`"}});
+
+  apply_overrides(root, overrides, check);
+  check.unknown_keys(root, kTopKeys, "pipeline");
+
+  PipelineConfig config;
+  config.file = fs::absolute(file).lexically_normal();
+  const fs::path base = config.file.parent_path();
+  config.name = root["name"] ? root["name"].as<std::string>() : file.stem().string();
+  if (root["medax"] && root["medax"].Scalar() != "1")
+    check.error(root["medax"], "this medax reads pipeline format 1; `medax: " + root["medax"].Scalar() + "` is newer");
+  if (root["seed"]) {
+    auto s = parse_int(root["seed"].Scalar());
+    if (!s || *s < 0) check.error(root["seed"], "`seed` must be a whole number >= 0");
+    else config.seed = static_cast<std::uint64_t>(*s);
+  }
+
+  if (!overrides.input.empty()) {
+    config.input = fs::absolute(overrides.input).lexically_normal();
+    if (!fs::exists(config.input)) check.error_at("--input", fmt::format("input file {} not found", config.input.string()));
+  } else if (root["input"]) {
+    if (auto text = scalar(check, root["input"], "`input`")) {
+      config.input = resolve_path(base, *text);
+      if (!fs::exists(config.input))
+        check.error(root["input"], fmt::format("input file {} not found (paths are relative to the pipeline file)",
+                                               config.input.string()));
+    }
+  } else {
+    check.error_at(file.string(), "no input mesh: add `input: PATH` or run with --input PATH");
+  }
+  if (root["medial_input"]) {
+    if (auto text = scalar(check, root["medial_input"], "`medial_input`")) {
+      config.medial_input = resolve_path(base, *text);
+      if (!fs::exists(config.medial_input))
+        check.error(root["medial_input"], fmt::format("medial input {} not found", config.medial_input.string()));
+    }
+  }
+
+  const YAML::Node stages = root["stages"];
+  if (!stages || !stages.IsSequence() || stages.size() == 0) {
+    check.error(stages ? stages : root, "`stages:` must be a non-empty list of stages");
+  } else {
+    Validator validator(check, registry);
+    std::set<std::string> ids;
+    bool has_medial = !config.medial_input.empty();
+    for (const YAML::Node& node : stages) {
+      auto stage = validator.stage(node, std::nullopt);
+      if (!stage) continue;
+      if (!ids.insert(stage->id).second)
+        check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
+      if (stage->role == Role::Extraction) has_medial = true;
+      else if (stage->role != Role::Conditioning && !has_medial)
+        check.error(node, fmt::format("'{}' is a {} stage and needs a medial complex: put an extraction stage "
+                                      "before it, or give `medial_input: FILE.ma`",
+                                      stage->plugin, to_string(stage->role)));
+      config.stages.push_back(std::move(*stage));
+    }
+  }
+
+  if (const YAML::Node outputs = root["outputs"]) {
+    if (!outputs.IsMap()) {
+      check.error(outputs, "`outputs:` is a map like {medial: [ma, ply], surface: [off]}");
+    } else {
+      check.unknown_keys(outputs, kOutputKeys, "outputs");
+      if (outputs["medial"]) config.outputs.medial = formats(check, outputs["medial"], kMedialFormats, "medial");
+      if (outputs["surface"]) config.outputs.surface = formats(check, outputs["surface"], kSurfaceFormats, "surface");
+      if (outputs["frame"]) {
+        const std::string frame = outputs["frame"].Scalar();
+        if (frame != "input" && frame != "working")
+          check.error(outputs["frame"], "`frame` is `input` (the input file's coordinates) or `working`");
+        config.outputs.input_frame = frame == "input";
+      }
+    }
+  } else {
+    config.outputs.medial = {"ma", "ply"};
+  }
+
+  if (!check.ok()) throw PipelineError(check.take());
+  return config;
+}
+
+}  // namespace medax

@@ -1,0 +1,172 @@
+// Runs a validated pipeline into a run folder.
+#include <medax/io.hpp>
+#include <medax/kernel/runner.hpp>
+
+#include "run_context.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+
+namespace medax {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct StageTiming {
+  std::string id, plugin;
+  double seconds = 0;
+  double peak_mib = 0;
+  bool ok = false;
+};
+
+/// Resets the kernel's peak-RSS mark so the next reading is this stage's own peak (Linux).
+void reset_peak_memory() {
+  std::ofstream clear("/proc/self/clear_refs");
+  if (clear) clear << "5";
+}
+
+double peak_memory_mib() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+std::shared_ptr<spdlog::logger> make_logger(const fs::path& log_file, bool quiet) {
+  std::vector<spdlog::sink_ptr> sinks;
+  sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file.string(), true));
+  if (!quiet) sinks.push_back(std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
+  auto logger = std::make_shared<spdlog::logger>("medax", sinks.begin(), sinks.end());
+  logger->set_pattern("[%H:%M:%S.%e] %^%l%$ %v");
+  logger->flush_on(spdlog::level::info);
+  return logger;
+}
+
+nlohmann::json metrics_json(const Scene& scene) {
+  nlohmann::json all = nlohmann::json::object();
+  for (const auto& [stage, metrics] : scene.metrics) {
+    nlohmann::json m = nlohmann::json::object();
+    for (const auto& [name, value] : metrics)
+      m[name] = std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+    all[stage] = m;
+  }
+  return all;
+}
+
+void write_json(const fs::path& path, const nlohmann::json& j) {
+  write_file_atomic(path, [&](std::ostream& out) { out << j.dump(2) << '\n'; });
+}
+
+/// Writes the configured outputs of the scene as it stands.
+void write_outputs(const PipelineConfig& config, const Scene& scene, const fs::path& dir, spdlog::logger& log) {
+  const Similarity frame = config.outputs.input_frame ? scene.shape.to_input : Similarity{};
+  if (scene.medial) {
+    MedialComplex medial = *scene.medial;
+    medial.transform(frame);
+    for (const std::string& ext : config.outputs.medial) {
+      write_medial(dir / ("medial." + ext), medial);
+      log.info("wrote medial.{} ({} vertices, {} edges, {} faces)", ext, medial.centres.size(),
+               medial.edges.size(), medial.faces.size());
+    }
+  }
+  if (!scene.shape.mesh.empty() && !config.outputs.surface.empty()) {
+    SurfaceMesh surface = scene.shape.mesh;
+    for (Vec3& v : surface.vertices) v = frame.apply(v);
+    for (const std::string& ext : config.outputs.surface) {
+      write_mesh(dir / ("surface." + ext), surface);
+      log.info("wrote surface.{}", ext);
+    }
+  }
+  write_json(dir / "metrics.json", metrics_json(scene));
+}
+
+}  // namespace
+
+RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) {
+  RunResult result;
+  result.out_dir = options.out_dir;
+  fs::create_directories(options.out_dir);
+  auto log = make_logger(options.out_dir / "log.txt", options.quiet);
+  const std::string resolved = resolved_yaml(config);
+  write_file_atomic(options.out_dir / "config.resolved.yaml", [&](std::ostream& out) { out << resolved; });
+  log->info("medax {} running '{}' (seed {}) into {}", kVersion, config.name, config.seed, options.out_dir.string());
+
+  detail::install_interrupt_handler();
+  std::vector<StageTiming> timings;
+  const auto run_start = std::chrono::steady_clock::now();
+  Scene scene;
+  try {
+    scene.shape.mesh = read_mesh(config.input);
+    scene.shape.source = config.input.string();
+    log->info("read {}: {} vertices, {} faces", config.input.string(), scene.shape.mesh.vertices.size(),
+              scene.shape.mesh.faces.size());
+    if (!config.medial_input.empty()) {
+      scene.medial = read_medial(config.medial_input);
+      log->info("read {}: {} medial vertices", config.medial_input.string(), scene.medial->centres.size());
+    }
+  } catch (const std::exception& e) {
+    result.failed_stage = "input";
+    result.error = e.what();
+    log->error("cannot read the input: {}", e.what());
+    return result;
+  }
+
+  for (const StageConfig& stage : config.stages) {
+    StageTiming timing{stage.id, stage.plugin};
+    reset_peak_memory();
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      // Work on a copy, so a stage that fails half-way leaves the last complete state behind.
+      Scene work = scene;
+      stage.instance->prepare(work);
+      detail::RunContext ctx(log, stage.id, detail::stage_seed(config.seed, stage.id), options.out_dir);
+      stage.instance->run(work, ctx);
+      if (work.medial) work.medial->validate();
+      scene = std::move(work);
+      timing.ok = true;
+    } catch (const std::exception& e) {
+      result.failed_stage = stage.id;
+      result.error = e.what();
+    }
+    timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    timing.peak_mib = peak_memory_mib();
+    timings.push_back(timing);
+    if (!timing.ok) {
+      log->error("stage '{}' ({}) failed after {:.3f} s: {}", stage.id, stage.plugin, timing.seconds, result.error);
+      break;
+    }
+    log->info("stage '{}' ({}) done in {:.3f} s, peak memory {:.1f} MiB", stage.id, stage.plugin, timing.seconds,
+              timing.peak_mib);
+  }
+
+  try {
+    write_outputs(config, scene, options.out_dir, *log);
+  } catch (const std::exception& e) {
+    if (result.failed_stage.empty()) result.failed_stage = "outputs";
+    if (result.error.empty()) result.error = e.what();
+    log->error("writing outputs failed: {}", e.what());
+  }
+  nlohmann::json tj = nlohmann::json::object();
+  tj["stages"] = nlohmann::json::array();
+  for (const StageTiming& t : timings)
+    tj["stages"].push_back({{"id", t.id}, {"plugin", t.plugin}, {"seconds", t.seconds},
+                            {"peak_memory_mib", t.peak_mib}, {"ok", t.ok}});
+  tj["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+  write_json(options.out_dir / "timings.json", tj);
+
+  result.ok = result.failed_stage.empty();
+  if (result.ok) log->info("done: results in {}", options.out_dir.string());
+  else log->error("run stopped at '{}'; outputs of the stages before it are in {}", result.failed_stage,
+                  options.out_dir.string());
+  log->flush();
+  return result;
+}
+
+}  // namespace medax

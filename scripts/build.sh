@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Configures and builds medax (Release) in ./build. Extra arguments are passed to the build,
+# e.g. `scripts/build.sh --target medax_cli`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+generator=()
+if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+if [ -f build/CMakeCache.txt ]; then generator=(); fi  # keep the generator the folder was made with
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DMEDAX_BUILD_TESTS=ON
+cmake --build build --parallel "$(nproc)" "$@"

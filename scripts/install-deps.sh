@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs medax's build dependencies from Debian (bookworm) with apt-get. Does nothing when
+# they are all present already.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build ccache git pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev libtbb-dev libeigen3-dev
+  libtet1.5-dev libopenmesh-dev
+  libyaml-cpp-dev libboost-dev libboost-filesystem-dev
+  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
+  catch2 libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "medax: all build dependencies are installed"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "medax: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# README command 1: install the dependencies, build Release, and run the default pipeline
+# (normalize -> voronoi -> reconstruction, counts, topology) on the bundled mesh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh --target medax_cli medax_plugins
+build/bin/medax run pipelines/quickstart.yaml --out medax-runs/quickstart "$@"
+echo
+echo "Open medax-runs/quickstart/medial.ply in MeshLab; metrics are in medax-runs/quickstart/metrics.json."

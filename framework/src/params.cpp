@@ -119,4 +119,11 @@ const StageRef& ParamSet::stage_ref(const std::string& name) const {
   return *ref;
 }
 
+ParamSet default_params(const std::vector<ParamSpec>& specs) {
+  ParamSet set;
+  for (const ParamSpec& spec : specs)
+    if (spec.type != ParamType::Stage) set.set(spec.name, spec.default_value);
+  return set;
+}
+
 }  // namespace medax

@@ -74,6 +74,10 @@ class ParamSet {
   std::map<std::string, ParamValue> values_;
 };
 
+/// Every non-stage parameter at its default: for calling a stage directly (tests, scripts).
+/// Stage-typed parameters are left out; set them with ParamSet::set.
+ParamSet default_params(const std::vector<ParamSpec>& specs);
+
 /// A nested stage given as a parameter: which plugin, its resolved parameters, and the instance.
 struct StageRef {
   std::string plugin;

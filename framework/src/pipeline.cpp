@@ -53,7 +53,7 @@ class Checker {
 
   void unknown_keys(const YAML::Node& map, const std::vector<std::string>& known, const char* what) {
     for (const auto& kv : map) {
-      const std::string key = kv.first.as<std::string>();
+      const std::string key = kv.first.Scalar();  // empty for a non-scalar key: reported below
       if (std::find(known.begin(), known.end(), key) == known.end())
         error(kv.first, fmt::format("unknown {} key '{}'{}; known keys: {}", what, key,
                                     detail::did_you_mean(detail::closest_names(key, known)),
@@ -110,20 +110,19 @@ class Validator {
   /// Validates a stage entry (map with plugin/id/params, or a bare plugin name for nested
   /// stages) and creates its configured instance. Returns nullopt when invalid.
   std::optional<StageConfig> stage(const YAML::Node& node, std::optional<Role> required_role) {
-    YAML::Node plugin_node, params_node;
     StageConfig config;
-    if (node.IsScalar() && required_role) {
-      plugin_node = node;
-    } else if (node.IsMap()) {
+    if (!node.IsMap() && !(node.IsScalar() && required_role)) {
+      check_.error(node, "a stage is a map with `plugin:` (and optional `id:`, `params:`)");
+      return std::nullopt;
+    }
+    // Copy-constructed, not assigned: yaml-cpp throws when a missing key's node is assigned.
+    const YAML::Node plugin_node = node.IsMap() ? node["plugin"] : node;
+    const YAML::Node params_node = node.IsMap() ? node["params"] : YAML::Node();
+    if (node.IsMap()) {
       check_.unknown_keys(node, kStageKeys, "stage");
-      plugin_node = node["plugin"];
-      params_node = node["params"];
       if (node["id"]) {
         if (auto id = scalar(check_, node["id"], "`id`")) config.id = *id;
       }
-    } else {
-      check_.error(node, "a stage is a map with `plugin:` (and optional `id:`, `params:`)");
-      return std::nullopt;
     }
     if (!plugin_node) {
       check_.error(node, "this stage has no `plugin:`; add `plugin: NAME` (see `medax plugins`)");
@@ -155,7 +154,7 @@ class Validator {
         std::vector<std::string> declared;
         for (const ParamSpec& spec : info.params) declared.push_back(spec.name);
         for (const auto& kv : params_node) {
-          const std::string key = kv.first.as<std::string>();
+          const std::string key = kv.first.Scalar();
           if (std::find(declared.begin(), declared.end(), key) == declared.end()) {
             check_.error(kv.first, fmt::format("'{}' has no parameter '{}'{}; `medax describe {}` lists its parameters",
                                                *name, key, detail::did_you_mean(detail::closest_names(key, declared)),
@@ -166,7 +165,9 @@ class Validator {
       }
     }
     for (const ParamSpec& spec : info.params) {
-      YAML::Node value = params_node && params_node.IsMap() ? params_node[spec.name] : YAML::Node();
+      // An absent parameter is an undefined node (a default-constructed Node counts as given).
+      const YAML::Node value = params_node && params_node.IsMap() ? params_node[spec.name]
+                                                                  : YAML::Node(YAML::NodeType::Undefined);
       std::optional<ParamValue> v = value ? parse(spec, value, *name) : default_of(spec, node);
       if (v) config.params.set(spec.name, std::move(*v));
       else ok = false;
@@ -286,17 +287,25 @@ void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& chec
     if (root["stages"] && root["stages"].IsSequence()) {
       for (YAML::Node stage : root["stages"]) {
         if (!stage.IsMap()) continue;
-        const std::string id = stage["id"] ? stage["id"].as<std::string>()
-                               : stage["plugin"] ? stage["plugin"].as<std::string>() : std::string();
+        // Scalar() is empty for a malformed id or plugin; validation reports those.
+        const std::string id = stage["id"] ? stage["id"].Scalar() : stage["plugin"] ? stage["plugin"].Scalar() : "";
         ids.push_back(id);
         if (id != stage_id) continue;
         found = true;
         YAML::Node params = stage["params"];
         if (!params || params.IsNull()) params = YAML::Node(YAML::NodeType::Map);
-        YAML::Node parsed = YAML::Load(value);
+        YAML::Node parsed;
+        try {
+          parsed = YAML::Load(value);
+        } catch (const YAML::Exception& e) {
+          check.error_at(where, fmt::format("the value is not valid YAML: {}", e.msg));
+          continue;
+        }
         params[param] = parsed;
         stage["params"] = params;
         check.mark_overridden(parsed, where);
+        for (const auto& kv : params)  // the key too, so "no parameter 'x'" names the option
+          if (kv.first.Scalar() == param) check.mark_overridden(kv.first, where);
       }
     }
     if (!found)
@@ -321,7 +330,8 @@ std::vector<std::string> formats(Checker& check, const YAML::Node& node, const s
 
 }  // namespace
 
-PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, const Overrides& overrides) {
+namespace {
+PipelineConfig load_checked(const fs::path& file, const Registry& registry, const Overrides& overrides) {
   Checker check(file.string());
   if (!fs::exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
   YAML::Node root;
@@ -340,7 +350,10 @@ PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, con
   PipelineConfig config;
   config.file = fs::absolute(file).lexically_normal();
   const fs::path base = config.file.parent_path();
-  config.name = root["name"] ? root["name"].as<std::string>() : file.stem().string();
+  config.name = file.stem().string();
+  if (root["name"]) {
+    if (auto name = scalar(check, root["name"], "`name`")) config.name = *name;
+  }
   if (root["medax"] && root["medax"].Scalar() != "1")
     check.error(root["medax"], "this medax reads pipeline format 1; `medax: " + root["medax"].Scalar() + "` is newer");
   if (root["seed"]) {
@@ -379,7 +392,14 @@ PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, con
     bool has_medial = !config.medial_input.empty();
     for (const YAML::Node& node : stages) {
       auto stage = validator.stage(node, std::nullopt);
-      if (!stage) continue;
+      if (!stage) {
+        // An invalid extraction stage still provides the complex for the role check of later
+        // stages, so one mistake is not reported twice.
+        if (node.IsMap() && node["plugin"] && node["plugin"].IsScalar())
+          if (const RegisteredStage* s = registry.find(node["plugin"].Scalar()))
+            has_medial = has_medial || s->info().role == Role::Extraction;
+        continue;
+      }
       if (!ids.insert(stage->id).second)
         check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
       if (stage->role == Role::Extraction) has_medial = true;
@@ -411,6 +431,18 @@ PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, con
 
   if (!check.ok()) throw PipelineError(check.take());
   return config;
+}
+}  // namespace
+
+PipelineConfig load_pipeline(const fs::path& file, const Registry& registry, const Overrides& overrides) {
+  try {
+    return load_checked(file, registry, overrides);
+  } catch (const YAML::Exception& e) {
+    // A shape of YAML the checks above did not anticipate: still one diagnostic, never a crash.
+    if (e.mark.is_null()) throw PipelineError({Diagnostic{file.string(), 0, 0, "unexpected structure: " + e.msg}});
+    throw PipelineError({Diagnostic{file.string(), e.mark.line + 1, e.mark.column + 1,
+                                    "unexpected structure: " + e.msg}});
+  }
 }
 
 }  // namespace medax

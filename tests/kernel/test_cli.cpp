@@ -1,0 +1,143 @@
+// The `medax` command line end to end: plugins, describe, validate, run, and exit codes
+// (0 success, 1 a stage failed, 2 bad usage or invalid pipeline).
+#include "kernel_test_support.hpp"
+
+#include <cstdio>
+#include <sys/wait.h>
+
+using medax::test::data_file;
+using medax::test::plugin_dir;
+using medax::test::read_text;
+using medax::test::scratch_dir;
+using medax::test::write_text;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Output {
+  int code = -1;
+  std::string out, err;
+};
+
+/// Runs `medax ARGS` with MEDAX_PLUGIN_PATH set to `plugin_path`, capturing stdout and stderr.
+Output run_medax(const std::string& args, const std::string& plugin_path, const fs::path& dir) {
+  const fs::path err_file = dir / "stderr.txt";
+  const std::string command = "MEDAX_PLUGIN_PATH='" + plugin_path + "' '" +
+                              (fs::path(MEDAX_BINARY_DIR) / "bin" / "medax").string() + "' " + args + " 2>'" +
+                              err_file.string() + "'";
+  Output result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe);
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.out.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = read_text(err_file);
+  return result;
+}
+
+const std::string kGood = plugin_dir("good").string();
+
+std::string pipeline(const std::string& stages) {
+  return "input: " + data_file("cube.off") + "\nseed: 3\nstages:\n" + stages;
+}
+
+}  // namespace
+
+TEST_CASE("medax plugins lists the stages ordered by role with package and version", "[cli]") {
+  const auto r = run_medax("plugins", kGood, scratch_dir("cli_plugins"));
+  INFO(r.out << r.err);
+  CHECK(r.code == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.rfind("ROLE", 0) == 0);
+  const auto scale = r.out.find("conditioning");
+  const auto centroid = r.out.find("test_centroid");
+  const auto count = r.out.find("test_count");
+  REQUIRE(scale != std::string::npos);
+  REQUIRE(centroid != std::string::npos);
+  REQUIRE(count != std::string::npos);
+  CHECK(scale < centroid);
+  CHECK(centroid < count);
+  CHECK_THAT(r.out, Catch::Contains("kernel_test"));
+  CHECK_THAT(r.out, Catch::Contains("1.2.3"));
+  CHECK_THAT(r.out, Catch::Contains("Count medial elements (kernel test stage)"));
+}
+
+TEST_CASE("medax plugins reports a broken plugin on one line and exits 2", "[cli]") {
+  const auto r = run_medax("plugins", kGood + ":" + plugin_dir("bad_abi").string(), scratch_dir("cli_plugins_broken"));
+  CHECK(r.code == 2);
+  CHECK_THAT(r.out, Catch::Contains("test_scale"));  // the good ones are still listed
+  CHECK_THAT(r.err, Catch::StartsWith("error: plugin " + plugin_dir("bad_abi").string()));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
+
+TEST_CASE("medax describe prints every parameter with type default and range", "[cli]") {
+  const auto dir = scratch_dir("cli_describe");
+  const auto r = run_medax("describe test_count", kGood, dir);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("test_count (evaluation stage, package kernel_test 1.2.3)"));
+  CHECK_THAT(r.out, Catch::Contains("PARAMETER"));
+  CHECK_THAT(r.out, Catch::Matches("(.|\n)*element +choice +all +one of all\\|vertices\\|edges\\|faces +what to count(.|\n)*"));
+  CHECK_THAT(r.out, Catch::Matches("(.|\n)*log +bool +false +log the counts(.|\n)*"));
+
+  const auto scale = run_medax("describe test_scale", kGood, dir);
+  CHECK_THAT(scale.out, Catch::Matches("(.|\n)*factor +real +1 +\\[0.001, 1000\\] +scale factor(.|\n)*"));
+
+  const auto unknown = run_medax("describe test_scal", kGood, dir);
+  CHECK(unknown.code == 2);
+  CHECK_THAT(unknown.err, Catch::Contains("no stage named 'test_scal'"));
+  CHECK_THAT(unknown.err, Catch::Contains("test_scale"));
+}
+
+TEST_CASE("medax validate accepts a good pipeline and rejects a bad one with file:line:col", "[cli]") {
+  const auto dir = scratch_dir("cli_validate");
+  const auto good = write_text(dir / "good.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_count\n"));
+  const auto ok = run_medax("validate '" + good.string() + "'", kGood, dir);
+  CHECK(ok.code == 0);
+  CHECK_THAT(ok.out, Catch::Contains("valid (2 stages: test_centroid -> test_count)"));
+
+  const auto bad = write_text(dir / "bad.yaml", pipeline("  - plugin: test_centriod\n"));
+  const auto r = run_medax("validate '" + bad.string() + "'", kGood, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains(bad.string() + ":4:13: error: unknown plugin 'test_centriod'"));
+  CHECK_THAT(r.err, Catch::Contains("did you mean 'test_centroid'"));
+
+  const auto set = run_medax("validate '" + good.string() + "' --set test_count.element=nodes", kGood, dir);
+  CHECK(set.code == 2);
+  CHECK_THAT(set.err, Catch::Contains("--set test_count.element=nodes: error:"));
+}
+
+TEST_CASE("medax run writes the run folder and exits 0", "[cli]") {
+  const auto dir = scratch_dir("cli_run");
+  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_scale\n  - plugin: test_centroid\n"
+                                                        "  - plugin: test_count\n"));
+  const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() +
+                           "' --set test_scale.factor=4 --quiet",
+                       kGood, dir);
+  INFO(r.out << r.err);
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("results: " + (dir / "run").string()));
+  for (const char* name : {"config.resolved.yaml", "log.txt", "metrics.json", "timings.json", "medial.ma", "medial.ply"})
+    CHECK(fs::exists(dir / "run" / name));
+  CHECK_THAT(read_text(dir / "run" / "config.resolved.yaml"), Catch::Contains("factor: 4.0"));
+  CHECK_THAT(read_text(dir / "run" / "metrics.json"), Catch::Contains("\"vertices\": 1"));
+}
+
+TEST_CASE("medax run with a failing stage exits 1 naming the stage", "[cli]") {
+  const auto dir = scratch_dir("cli_run_fail");
+  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_fail\n"));
+  const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() + "' --quiet", kGood, dir);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Catch::Contains("error: stage 'test_fail' failed: test_fail failed on purpose"));
+  CHECK(fs::exists(dir / "run" / "medial.ma"));
+}
+
+TEST_CASE("medax run of an invalid pipeline exits 2 and runs nothing", "[cli]") {
+  const auto dir = scratch_dir("cli_run_invalid");
+  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_count\n"));
+  const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() + "'", kGood, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains(file.string() + ":4:5: error:"));
+  CHECK_FALSE(fs::exists(dir / "run"));
+}

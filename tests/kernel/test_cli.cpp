@@ -79,7 +79,7 @@ TEST_CASE("medax describe prints every parameter with type default and range", "
   CHECK_THAT(r.out, Catch::Contains("test_count (evaluation stage, package kernel_test 1.2.3)"));
   CHECK_THAT(r.out, Catch::Contains("PARAMETER"));
   CHECK_THAT(r.out, Catch::Matches("(.|\n)*element +choice +all +one of all\\|vertices\\|edges\\|faces +what to count(.|\n)*"));
-  CHECK_THAT(r.out, Catch::Matches("(.|\n)*log +bool +false +log the counts(.|\n)*"));
+  CHECK_THAT(r.out, Catch::Matches("(.|\n)*log +bool +false +log the counts and write them to counts.txt(.|\n)*"));
 
   const auto scale = run_medax("describe test_scale", kGood, dir);
   CHECK_THAT(scale.out, Catch::Matches("(.|\n)*factor +real +1 +\\[0.001, 1000\\] +scale factor(.|\n)*"));

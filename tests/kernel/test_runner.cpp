@@ -79,6 +79,30 @@ TEST_CASE("outputs in the working frame keep the conditioning stage's scaling", 
   CHECK_FALSE(fs::exists(run.dir / "medial.ply"));
 }
 
+TEST_CASE("stages log through their context and write extra outputs into the run folder", "[runner]") {
+  const auto run = run_yaml(scratch_dir("runner_context"),
+                            kInput + "stages:\n  - plugin: test_centroid\n"
+                                     "  - {plugin: test_count, id: counter, params: {log: true, element: vertices}}\n");
+  REQUIRE(run.result.ok);
+  CHECK_THAT(read_text(run.dir / "log.txt"), Catch::Contains("[counter] counted vertices"));
+  CHECK_THAT(read_text(run.dir / "log.txt"), Catch::Contains("[counter] wrote counts.txt"));
+  CHECK(read_text(run.dir / "counts.txt") == "vertices 1\n");
+}
+
+TEST_CASE("a pipeline can start from a medial axis read from a .ma file", "[runner]") {
+  const auto root = scratch_dir("runner_medial_input");
+  MedialComplex given;
+  given.add_vertex(Vec3(0.5, 0, 0), 0.25);
+  given.add_vertex(Vec3(-0.5, 0, 0), 0.25);
+  given.add_edge(0, 1);
+  write_ma(root / "given.ma", given);
+  const auto run = run_yaml(root, kInput + "medial_input: given.ma\nstages:\n  - plugin: test_count\n"
+                                           "outputs: {medial: ma}\n");
+  REQUIRE(run.result.ok);
+  CHECK(read_json(run.dir / "metrics.json")["test_count"]["edges"] == 1);
+  CHECK(read_text(run.dir / "medial.ma") == read_text(root / "given.ma"));
+}
+
 TEST_CASE("a failing stage stops the run and earlier outputs remain", "[runner]") {
   const auto run = run_yaml(scratch_dir("runner_failure"),
                             kInput + "stages:\n"

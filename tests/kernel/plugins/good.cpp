@@ -3,6 +3,7 @@
 #include <medax/plugin.hpp>
 
 #include <cmath>
+#include <ostream>
 #include <random>
 #include <stdexcept>
 
@@ -81,7 +82,7 @@ class TestCount : public EvaluationStage {
   static StageInfo describe() {
     return {"test_count", "Count medial elements (kernel test stage)", "",
             {ParamSpec::choice("element", "all", {"all", "vertices", "edges", "faces"}, "what to count"),
-             ParamSpec::boolean("log", false, "log the counts")}};
+             ParamSpec::boolean("log", false, "log the counts and write them to counts.txt")}};
   }
   Metrics evaluate(const Shape&, const MedialComplex& medial, Context& ctx) override {
     const std::string& what = params().text("element");
@@ -89,7 +90,12 @@ class TestCount : public EvaluationStage {
     if (what == "all" || what == "vertices") m["vertices"] = static_cast<double>(medial.num_vertices());
     if (what == "all" || what == "edges") m["edges"] = static_cast<double>(medial.edges.size());
     if (what == "all" || what == "faces") m["faces"] = static_cast<double>(medial.faces.size());
-    if (params().boolean("log")) ctx.info("counted " + what);
+    if (params().boolean("log")) {
+      ctx.info("counted " + what);
+      ctx.write_output("counts.txt", [&](std::ostream& out) {
+        for (const auto& [name, value] : m) out << name << ' ' << value << '\n';
+      });
+    }
     return m;
   }
 };

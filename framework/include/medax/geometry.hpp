@@ -1,6 +1,7 @@
 #pragma once
 // Basic geometric types shared by every stage. Eigen only: no CGAL in public headers.
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products, rotations: used by nearly every stage
 #include <array>
 #include <cstdint>
 

@@ -9,7 +9,7 @@ packages=(
   libtet1.5-dev libopenmesh-dev
   libyaml-cpp-dev libboost-dev libboost-filesystem-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
-  catch2 libbenchmark-dev
+  catch2 libbenchmark-dev gnuplot-nox
 )
 
 missing=()

@@ -3,6 +3,7 @@
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
 #include <medax/kernel/runner.hpp>
+#include <medax/kernel/sweep.hpp>
 
 #include <fmt/format.h>
 
@@ -108,6 +109,7 @@ int validate(const RunArgs& args) {
 }
 
 int run(const RunArgs& args) {
+  if (!args.single_job && is_sweep(args.pipeline)) return run_sweep(args);
   Registry& registry = Registry::global();
   auto config = load(args, registry);
   if (!config) return 2;

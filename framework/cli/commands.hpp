@@ -13,11 +13,26 @@ struct RunArgs {
   std::filesystem::path out;
   std::vector<std::string> settings;
   bool quiet = false;
+  bool single_job = false;    ///< --job: run one job of a sweep (set by the sweep runner)
+  int parallel_jobs = 1;      ///< -j for sweeps
+  double timeout = -1;        ///< per-job seconds for sweeps; < 0: from the file
+  double memory_mib = -1;     ///< per-job MiB for sweeps; < 0: from the file
+};
+
+struct BenchArgs {
+  std::filesystem::path pipeline;
+  std::filesystem::path input;
+  std::vector<std::string> settings;
+  int warmup = 1;
+  int repeat = 5;
 };
 
 int list_plugins();
 int describe(const std::string& name);
 int validate(const RunArgs& args);
 int run(const RunArgs& args);
+/// `run` on a pipeline with `sweep:` or `inputs:`.
+int run_sweep(const RunArgs& args);
+int bench(const BenchArgs& args);
 
 }  // namespace medax::cli

@@ -28,10 +28,24 @@ int main(int argc, char** argv) {
   add_pipeline_options(run);
   run->add_option("--out,-o", args.out, "Run folder (default: medax-runs/<pipeline>-<input>)");
   run->add_flag("--quiet,-q", args.quiet, "Only errors on the terminal (log.txt has everything)");
+  run->add_option("--jobs,-j", args.parallel_jobs, "Sweeps: jobs run in parallel, each in its own process")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--timeout", args.timeout, "Sweeps: seconds per job before it is killed (overrides `limits:`)");
+  run->add_option("--memory-mib", args.memory_mib, "Sweeps: address-space limit per job (overrides `limits:`)");
+  run->add_flag("--job", args.single_job, "Run as one job of a sweep (used by the sweep runner)")->group("");
+
+  medax::cli::BenchArgs bench_args;
+  auto* bench = app.add_subcommand("bench", "Time a pipeline: warm-up runs, then min and median per stage");
+  bench->add_option("PIPELINE", bench_args.pipeline, "Pipeline YAML file")->required();
+  bench->add_option("--input,-i", bench_args.input, "Input mesh (replaces the pipeline's `input:`)");
+  bench->add_option("--set,-s", bench_args.settings, "Override a parameter: STAGE.PARAM=VALUE");
+  bench->add_option("--warmup", bench_args.warmup, "Untimed runs first")->check(CLI::NonNegativeNumber);
+  bench->add_option("--repeat", bench_args.repeat, "Timed runs")->check(CLI::PositiveNumber);
 
   CLI11_PARSE(app, argc, argv);
   if (plugins->parsed()) return medax::cli::list_plugins();
   if (describe->parsed()) return medax::cli::describe(name);
   if (validate->parsed()) return medax::cli::validate(args);
+  if (bench->parsed()) return medax::cli::bench(bench_args);
   return medax::cli::run(args);
 }

@@ -16,7 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kTopKeys{"medax", "name", "seed", "input", "medial_input", "stages", "outputs"};
+// `inputs`, `sweep`, `plots` and `limits` belong to experiments (sweep_config.cpp); a single run
+// ignores them.
+const std::vector<std::string> kTopKeys{"medax", "name",  "seed",  "input",  "medial_input", "stages",
+                                        "outputs", "inputs", "sweep", "plots", "limits"};
 const std::vector<std::string> kStageKeys{"plugin", "id", "params"};
 const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
 const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};
@@ -272,7 +275,7 @@ fs::path resolve_path(const fs::path& base_dir, const std::string& text) {
 
 void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& check) {
   for (const std::string& setting : overrides.settings) {
-    const std::string where = fmt::format("--set {}", setting);
+    const std::string where = fmt::format("{} {}", overrides.origin, setting);
     const auto eq = setting.find('=');
     const auto dot = setting.find('.');
     if (eq == std::string::npos || dot == std::string::npos || dot > eq) {
@@ -292,6 +295,13 @@ void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& chec
         ids.push_back(id);
         if (id != stage_id) continue;
         found = true;
+        if (param == "plugin") {  // swap the plugin; the old plugin's params do not apply
+          YAML::Node plugin = YAML::Node(value);
+          stage["plugin"] = plugin;
+          stage.remove("params");
+          check.mark_overridden(stage["plugin"], where);
+          continue;
+        }
         YAML::Node params = stage["params"];
         if (!params || params.IsNull()) params = YAML::Node(YAML::NodeType::Map);
         YAML::Node parsed;

@@ -19,20 +19,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct StageTiming {
-  std::string id, plugin;
-  double seconds = 0;
-  double peak_mib = 0;
-  bool ok = false;
-};
-
 /// Resets the kernel's peak-RSS mark so the next reading is this stage's own peak (Linux).
 void reset_peak_memory() {
   std::ofstream clear("/proc/self/clear_refs");
   if (clear) clear << "5";
 }
 
-double peak_memory_mib() {
+double read_peak_memory_mib() {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);)
     if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
@@ -99,7 +92,7 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   log->info("medax {} running '{}' (seed {}) into {}", kVersion, config.name, config.seed, options.out_dir.string());
 
   detail::install_interrupt_handler();
-  std::vector<StageTiming> timings;
+  std::vector<StageTiming>& timings = result.timings;
   const auto run_start = std::chrono::steady_clock::now();
   Scene scene;
   try {
@@ -136,14 +129,14 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       result.error = e.what();
     }
     timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    timing.peak_mib = peak_memory_mib();
+    timing.peak_memory_mib = read_peak_memory_mib();
     timings.push_back(timing);
     if (!timing.ok) {
       log->error("stage '{}' ({}) failed after {:.3f} s: {}", stage.id, stage.plugin, timing.seconds, result.error);
       break;
     }
     log->info("stage '{}' ({}) done in {:.3f} s, peak memory {:.1f} MiB", stage.id, stage.plugin, timing.seconds,
-              timing.peak_mib);
+              timing.peak_memory_mib);
   }
 
   try {
@@ -157,7 +150,7 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   tj["stages"] = nlohmann::json::array();
   for (const StageTiming& t : timings)
     tj["stages"].push_back({{"id", t.id}, {"plugin", t.plugin}, {"seconds", t.seconds},
-                            {"peak_memory_mib", t.peak_mib}, {"ok", t.ok}});
+                            {"peak_memory_mib", t.peak_memory_mib}, {"ok", t.ok}});
   tj["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
   write_json(options.out_dir / "timings.json", tj);
 

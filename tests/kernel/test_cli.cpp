@@ -1,11 +1,12 @@
 // The `medax` command line end to end: plugins, describe, validate, run, and exit codes
 // (0 success, 1 a stage failed, 2 bad usage or invalid pipeline).
-#include "kernel_test_support.hpp"
+#include "cli_helpers.hpp"
 
 #include <cstdio>
 #include <sys/wait.h>
 
 using medax::test::data_file;
+using medax::test::run_medax;
 using medax::test::plugin_dir;
 using medax::test::read_text;
 using medax::test::scratch_dir;
@@ -14,28 +15,6 @@ using medax::test::write_text;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Output {
-  int code = -1;
-  std::string out, err;
-};
-
-/// Runs `medax ARGS` with MEDAX_PLUGIN_PATH set to `plugin_path`, capturing stdout and stderr.
-Output run_medax(const std::string& args, const std::string& plugin_path, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string command = "MEDAX_PLUGIN_PATH='" + plugin_path + "' '" +
-                              (fs::path(MEDAX_BINARY_DIR) / "bin" / "medax").string() + "' " + args + " 2>'" +
-                              err_file.string() + "'";
-  Output result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe);
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  result.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = read_text(err_file);
-  return result;
-}
 
 const std::string kGood = plugin_dir("good").string();
 

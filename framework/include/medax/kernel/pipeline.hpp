@@ -59,7 +59,10 @@ struct PipelineConfig {
 /// Command-line changes applied before validation.
 struct Overrides {
   std::filesystem::path input;       ///< replaces `input:` when not empty
-  std::vector<std::string> settings; ///< "STAGE.PARAM=VALUE", STAGE being a stage id
+  /// "STAGE.PARAM=VALUE" (STAGE being a stage id), or "STAGE.plugin=NAME" to swap the stage's
+  /// plugin (its params are then reset to the new plugin's defaults).
+  std::vector<std::string> settings;
+  std::string origin = "--set";      ///< how diagnostics name a setting ("--set", "sweep")
 };
 
 /// Reads and validates a pipeline. Throws PipelineError with every problem found.

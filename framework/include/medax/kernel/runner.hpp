@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace medax {
 
@@ -12,11 +13,19 @@ struct RunOptions {
   bool quiet = false;             ///< no log lines on stderr
 };
 
+struct StageTiming {
+  std::string id, plugin;
+  double seconds = 0;
+  double peak_memory_mib = 0;  ///< the stage's own peak resident memory
+  bool ok = false;
+};
+
 struct RunResult {
   bool ok = false;
   std::string failed_stage;  ///< id of the stage that threw
   std::string error;
   std::filesystem::path out_dir;
+  std::vector<StageTiming> timings;  ///< one per stage that ran
 };
 
 /// Runs every stage in order, writing config.resolved.yaml, log.txt, metrics.json,

@@ -1,0 +1,50 @@
+// `medax run` on an experiment: expand, validate every job, run them in parallel processes,
+// write the results table and plots.
+#include "commands.hpp"
+
+#include <medax/kernel/registry.hpp>
+#include <medax/kernel/sweep.hpp>
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <fmt/format.h>
+
+namespace medax::cli {
+
+int run_sweep(const RunArgs& args) {
+  Registry& registry = Registry::global();
+  SweepConfig config;
+  std::vector<SweepJob> jobs;
+  try {
+    config = load_sweep(args.pipeline);
+    if (!args.input.empty()) config.inputs = {std::filesystem::absolute(args.input).lexically_normal()};
+    if (args.timeout >= 0) config.limits.timeout_seconds = args.timeout;
+    if (args.memory_mib >= 0) config.limits.memory_mib = args.memory_mib;
+    jobs = expand_sweep(config);
+    if (!args.settings.empty())  // --set applies to every job, before the swept values
+      for (SweepJob& job : jobs) {
+        std::vector<std::pair<std::string, std::string>> fixed;
+        for (const std::string& s : args.settings) fixed.emplace_back(s.substr(0, s.find('=')), s.substr(s.find('=') + 1));
+        job.assignment.insert(job.assignment.begin(), fixed.begin(), fixed.end());
+      }
+    validate_sweep(config, jobs, registry);
+  } catch (const PipelineError& e) {
+    for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());
+    return 2;
+  }
+  SweepOptions options;
+  options.out_dir = args.out.empty() ? std::filesystem::path("medax-runs") / config.name : args.out;
+  options.medax_executable = boost::dll::program_location().string();
+  options.parallel_jobs = args.parallel_jobs;
+  options.quiet = args.quiet;
+  if (!args.quiet)
+    fmt::print(stderr, "[sweep] {} jobs ({} inputs x {} combinations), {} at a time, into {}\n", jobs.size(),
+               config.inputs.size(), config.inputs.empty() ? 0 : jobs.size() / config.inputs.size(),
+               options.parallel_jobs, options.out_dir.string());
+  const SweepSummary summary = run_sweep(config, jobs, options);
+  fmt::print("results: {} ({} ok, {} failed, {} skipped as already done)\n",
+             std::filesystem::absolute(options.out_dir / "results.csv").lexically_normal().string(),
+             summary.succeeded, summary.failed, summary.skipped);
+  return summary.failed == 0 ? 0 : 1;
+}
+
+}  // namespace medax::cli

@@ -1,0 +1,75 @@
+#pragma once
+// Experiments: a pipeline with `inputs:` (a list, globs or a manifest) and/or `sweep:` (values
+// per STAGE.PARAM or STAGE.plugin) expands into jobs, the cartesian product. Every job runs in
+// its own `medax run` process, so a crash, a time-out or a memory blow-up fails only that job.
+#include <medax/kernel/pipeline.hpp>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace medax {
+
+struct SweepAxis {
+  std::string key;                  ///< "STAGE.PARAM" or "STAGE.plugin"
+  std::vector<std::string> values;  ///< YAML text of each value
+};
+
+struct PlotSpec {
+  std::string x, y;        ///< results.csv column names
+  std::string series;      ///< column whose values make one curve each (default: input)
+  bool log_x = false, log_y = false;
+};
+
+struct SweepLimits {
+  double timeout_seconds = 0;  ///< 0: none
+  double memory_mib = 0;       ///< address-space limit per job; 0: none
+};
+
+struct SweepConfig {
+  std::filesystem::path file;
+  std::string name;
+  std::vector<std::filesystem::path> inputs;  ///< absolute, in order
+  std::vector<SweepAxis> axes;
+  std::vector<PlotSpec> plots;
+  SweepLimits limits;
+};
+
+struct SweepJob {
+  std::string name;  ///< folder name under jobs/, unique and readable
+  std::filesystem::path input;
+  std::vector<std::pair<std::string, std::string>> assignment;  ///< axis key -> value
+  std::vector<std::string> settings() const;                    ///< "KEY=VALUE" for --set
+};
+
+/// True when the file has `sweep:` or `inputs:` (so `medax run` runs it as an experiment).
+bool is_sweep(const std::filesystem::path& pipeline);
+/// Reads the sweep parts of a pipeline file. Throws PipelineError with positions.
+SweepConfig load_sweep(const std::filesystem::path& pipeline);
+/// The cartesian product, inputs outermost, then the axes in file order.
+std::vector<SweepJob> expand_sweep(const SweepConfig& config);
+/// Validates every job as a single pipeline before any work. Throws PipelineError.
+void validate_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const Registry& registry);
+
+struct SweepOptions {
+  std::filesystem::path out_dir;
+  std::filesystem::path medax_executable;  ///< the `medax` binary that runs each job
+  int parallel_jobs = 1;
+  bool quiet = false;
+};
+
+struct SweepSummary {
+  std::size_t total = 0, skipped = 0, succeeded = 0, failed = 0;
+};
+
+/// Runs the jobs not already finished (a job folder with a successful status.json for the same
+/// settings is skipped: a sweep can be resumed), then writes results.csv, results.md and plots.
+SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const SweepOptions& options);
+
+/// Collects every job's status, metrics and timings into results.csv and results.md, and draws
+/// the plots (gnuplot: PNG and SVG). Returns the number of rows.
+std::size_t write_sweep_results(const SweepConfig& config, const std::vector<SweepJob>& jobs,
+                                const std::filesystem::path& out_dir);
+
+}  // namespace medax

@@ -1,0 +1,233 @@
+// Reading the experiment parts of a pipeline (`inputs:`, `sweep:`, `plots:`, `limits:`) and
+// expanding them into jobs.
+#include <medax/kernel/sweep.hpp>
+
+#include <fmt/format.h>
+#include <glob.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <set>
+
+namespace medax {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class Diagnostics {
+ public:
+  explicit Diagnostics(std::string file) : file_(std::move(file)) {}
+  void error(const YAML::Node& at, std::string message) {
+    Diagnostic d{file_, 0, 0, std::move(message)};
+    if (at.IsDefined() && !at.Mark().is_null()) d.line = at.Mark().line + 1, d.column = at.Mark().column + 1;
+    list_.push_back(std::move(d));
+  }
+  void throw_if_any() {
+    if (!list_.empty()) throw PipelineError(std::move(list_));
+  }
+
+ private:
+  std::string file_;
+  std::vector<Diagnostic> list_;
+};
+
+std::string yaml_text(const YAML::Node& node) {
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+bool has_glob_characters(const std::string& s) { return s.find_first_of("*?[") != std::string::npos; }
+
+std::vector<fs::path> glob_paths(const fs::path& pattern) {
+  glob_t result{};
+  std::vector<fs::path> out;
+  if (::glob(pattern.c_str(), 0, nullptr, &result) == 0)
+    for (std::size_t i = 0; i < result.gl_pathc; ++i) out.emplace_back(result.gl_pathv[i]);
+  ::globfree(&result);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+fs::path absolute_from(const fs::path& base, const std::string& text) {
+  fs::path p(text);
+  return (p.is_relative() ? base / p : p).lexically_normal();
+}
+
+/// One entry of `inputs:`: a path, a glob, or {manifest: FILE} (one path per line, '#' comments).
+void add_inputs(const YAML::Node& node, const fs::path& base, std::vector<fs::path>& inputs, Diagnostics& diag) {
+  if (node.IsMap() && node["manifest"] && node["manifest"].IsScalar()) {
+    const fs::path manifest = absolute_from(base, node["manifest"].Scalar());
+    std::ifstream in(manifest);
+    if (!in) return diag.error(node["manifest"], fmt::format("cannot read manifest {}", manifest.string()));
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      line = line.substr(0, line.find('#'));
+      line.erase(0, line.find_first_not_of(" \t"));
+      line.erase(line.find_last_not_of(" \t\r") + 1);
+      if (line.empty()) continue;
+      const fs::path p = absolute_from(manifest.parent_path(), line);
+      if (!fs::exists(p))
+        diag.error(node["manifest"], fmt::format("{}:{}: input {} not found", manifest.string(), number, p.string()));
+      inputs.push_back(p);
+    }
+    return;
+  }
+  if (!node.IsScalar())
+    return diag.error(node, "an `inputs:` entry is a path, a glob like meshes/*.off, or {manifest: FILE}");
+  const fs::path p = absolute_from(base, node.Scalar());
+  if (has_glob_characters(node.Scalar())) {
+    const auto matches = glob_paths(p);
+    if (matches.empty()) diag.error(node, fmt::format("no file matches {}", p.string()));
+    inputs.insert(inputs.end(), matches.begin(), matches.end());
+  } else {
+    if (!fs::exists(p)) diag.error(node, fmt::format("input file {} not found", p.string()));
+    inputs.push_back(p);
+  }
+}
+
+std::string folder_safe(const std::string& text) {
+  std::string out;
+  for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '=' || c == '-') ? c : '_';
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> SweepJob::settings() const {
+  std::vector<std::string> out;
+  for (const auto& [key, value] : assignment) out.push_back(key + "=" + value);
+  return out;
+}
+
+bool is_sweep(const fs::path& pipeline) {
+  try {
+    const YAML::Node root = YAML::LoadFile(pipeline.string());
+    return root.IsMap() && (root["sweep"] || root["inputs"]);
+  } catch (const YAML::Exception&) {
+    return false;  // load_pipeline reports the syntax error with its position
+  }
+}
+
+SweepConfig load_sweep(const fs::path& pipeline) {
+  Diagnostics diag(pipeline.string());
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(pipeline.string());
+  } catch (const YAML::Exception& e) {
+    throw PipelineError({Diagnostic{pipeline.string(), e.mark.line + 1, e.mark.column + 1, "not valid YAML: " + e.msg}});
+  }
+  SweepConfig config;
+  config.file = fs::absolute(pipeline).lexically_normal();
+  const fs::path base = config.file.parent_path();
+  config.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : pipeline.stem().string();
+
+  if (const YAML::Node inputs = root["inputs"]) {
+    if (inputs.IsSequence()) for (const YAML::Node& n : inputs) add_inputs(n, base, config.inputs, diag);
+    else add_inputs(inputs, base, config.inputs, diag);
+    if (root["input"]) diag.error(root["input"], "give either `input:` or `inputs:`, not both");
+  } else if (root["input"] && root["input"].IsScalar()) {
+    config.inputs.push_back(absolute_from(base, root["input"].Scalar()));
+  } else {
+    diag.error(root, "an experiment needs `input:` or `inputs:`");
+  }
+
+  if (const YAML::Node sweep = root["sweep"]) {
+    if (!sweep.IsMap()) diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin) to a list of values");
+    else
+      for (const auto& kv : sweep) {
+        const std::string key = kv.first.Scalar();
+        if (key.find('.') == std::string::npos) {
+          diag.error(kv.first, fmt::format("sweep key '{}' must be STAGE.PARAM or STAGE.plugin", key));
+          continue;
+        }
+        SweepAxis axis{key, {}};
+        if (kv.second.IsSequence()) for (const YAML::Node& v : kv.second) axis.values.push_back(yaml_text(v));
+        else axis.values.push_back(yaml_text(kv.second));
+        if (axis.values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", key));
+        config.axes.push_back(std::move(axis));
+      }
+    // A plugin choice must apply before that stage's parameters (it resets them).
+    std::stable_sort(config.axes.begin(), config.axes.end(), [](const SweepAxis& a, const SweepAxis& b) {
+      const auto is_plugin = [](const SweepAxis& x) { return x.key.size() > 7 && x.key.rfind(".plugin") == x.key.size() - 7; };
+      return is_plugin(a) && !is_plugin(b);
+    });
+  }
+
+  if (const YAML::Node plots = root["plots"]) {
+    if (!plots.IsSequence()) diag.error(plots, "`plots:` is a list of {x: COLUMN, y: COLUMN}");
+    else
+      for (const YAML::Node& p : plots) {
+        if (!p.IsMap() || !p["x"] || !p["y"]) {
+          diag.error(p, "a plot is {x: COLUMN, y: COLUMN, series: COLUMN, log_x: bool, log_y: bool}");
+          continue;
+        }
+        PlotSpec spec{p["x"].Scalar(), p["y"].Scalar(), p["series"] ? p["series"].Scalar() : "input"};
+        spec.log_x = p["log_x"] && p["log_x"].as<bool>(false);
+        spec.log_y = p["log_y"] && p["log_y"].as<bool>(false);
+        config.plots.push_back(spec);
+      }
+  }
+
+  if (const YAML::Node limits = root["limits"]) {
+    const auto positive = [&](const char* key, double& out) {
+      if (!limits[key]) return;
+      try {
+        out = limits[key].as<double>();
+        if (out < 0) diag.error(limits[key], fmt::format("`{}` must be >= 0", key));
+      } catch (const YAML::Exception&) {
+        diag.error(limits[key], fmt::format("`{}` must be a number", key));
+      }
+    };
+    if (!limits.IsMap()) diag.error(limits, "`limits:` is {timeout: SECONDS, memory_mib: MIB}");
+    else {
+      positive("timeout", config.limits.timeout_seconds);
+      positive("memory_mib", config.limits.memory_mib);
+    }
+  }
+  diag.throw_if_any();
+  return config;
+}
+
+std::vector<SweepJob> expand_sweep(const SweepConfig& config) {
+  std::vector<SweepJob> jobs;
+  std::vector<std::size_t> choice(config.axes.size(), 0);
+  for (const fs::path& input : config.inputs) {
+    std::fill(choice.begin(), choice.end(), 0);
+    while (true) {
+      SweepJob job;
+      job.input = input;
+      std::string name = fmt::format("{:04}-{}", jobs.size() + 1, input.stem().string());
+      for (std::size_t a = 0; a < config.axes.size(); ++a) {
+        const SweepAxis& axis = config.axes[a];
+        job.assignment.emplace_back(axis.key, axis.values[choice[a]]);
+        name += "-" + axis.key.substr(axis.key.find('.') + 1) + "=" + axis.values[choice[a]];
+      }
+      job.name = folder_safe(name).substr(0, 120);
+      jobs.push_back(std::move(job));
+      // Odometer over the axes, last axis fastest.
+      std::size_t a = config.axes.size();
+      while (a > 0 && ++choice[a - 1] == config.axes[a - 1].values.size()) choice[--a] = 0;
+      if (a == 0) break;
+    }
+  }
+  return jobs;
+}
+
+void validate_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const Registry& registry) {
+  std::vector<Diagnostic> all;
+  std::set<std::string> seen;
+  for (const SweepJob& job : jobs) {
+    try {
+      load_pipeline(config.file, registry, Overrides{job.input, job.settings(), "sweep"});
+    } catch (const PipelineError& e) {
+      for (const Diagnostic& d : e.diagnostics())
+        if (seen.insert(d.format()).second) all.push_back(d);
+    }
+  }
+  if (!all.empty()) throw PipelineError(std::move(all));
+}
+
+}  // namespace medax

@@ -1,0 +1,44 @@
+// Stages that misbehave on purpose, for the sweep runner's isolation tests.
+#include <medax/medax.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <thread>
+
+using namespace medax;
+
+namespace {
+
+/// Aborts the process when `crash` is true (a segfault-like failure of one job).
+class TestCrash : public EvaluationStage {
+ public:
+  static StageInfo describe() {
+    return {"test_crash", "Abort the process when asked (sweep test stage)", "",
+            {ParamSpec::boolean("crash", false, "call std::abort")}};
+  }
+  Metrics evaluate(const Shape&, const MedialComplex&, Context&) override {
+    if (params().boolean("crash")) std::abort();
+    return {{"survived", 1.0}};
+  }
+};
+
+/// Sleeps, so a job can outlive its time limit.
+class TestSleep : public EvaluationStage {
+ public:
+  static StageInfo describe() {
+    return {"test_sleep", "Sleep for a while (sweep test stage)", "",
+            {ParamSpec::real("seconds", 0.0, "how long to sleep").range(0, 3600).in_unit("s")}};
+  }
+  Metrics evaluate(const Shape&, const MedialComplex&, Context&) override {
+    const double s = params().real("seconds");
+    std::this_thread::sleep_for(std::chrono::duration<double>(s));
+    return {{"slept", s}};
+  }
+};
+
+}  // namespace
+
+MEDAX_PLUGIN("kernel_test_sweep", "1.0.0") {
+  registrar.add<TestCrash>();
+  registrar.add<TestSleep>();
+}

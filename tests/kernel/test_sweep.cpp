@@ -1,0 +1,175 @@
+// Experiments: sweep expansion, process isolation (a crash and a time-out fail only their job),
+// resume, the results table's schema, and plots.
+#include "cli_helpers.hpp"
+
+#include <medax/kernel/sweep.hpp>
+
+#include <map>
+#include <set>
+
+using medax::test::data_file;
+using medax::test::plugin_dir;
+using medax::test::read_text;
+using medax::test::run_medax;
+using medax::test::scratch_dir;
+using medax::test::write_text;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kPlugins = plugin_dir("good").string() + ":" + plugin_dir("sweep").string();
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::istringstream in(text);
+  while (std::getline(in, line)) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  std::istringstream in(line);
+  while (std::getline(in, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.push_back("");
+  return cells;
+}
+
+std::string column(const std::vector<std::string>& header, const std::vector<std::string>& row, const std::string& name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  REQUIRE(it != header.end());
+  return row.at(static_cast<std::size_t>(it - header.begin()));
+}
+
+}  // namespace
+
+TEST_CASE("a sweep expands to the cartesian product with inputs outermost", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_expand");
+  const fs::path file = write_text(dir / "sweep.yaml",
+                                   "name: grid\ninputs: [" + data_file("cube.off") + ", " + data_file("ellipsoid.off") +
+                                       "]\nsweep:\n  scale.factor: [1, 2, 3]\n  count.element: [all, vertices]\n"
+                                       "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n"
+                                       "  - {plugin: test_count, id: count}\n");
+  CHECK(medax::is_sweep(file));
+  const medax::SweepConfig config = medax::load_sweep(file);
+  const auto jobs = medax::expand_sweep(config);
+  REQUIRE(jobs.size() == 2 * 3 * 2);
+  CHECK(jobs[0].input.filename() == "cube.off");
+  CHECK(jobs[0].settings() == std::vector<std::string>{"scale.factor=1", "count.element=all"});
+  CHECK(jobs[1].settings() == std::vector<std::string>{"scale.factor=1", "count.element=vertices"});
+  CHECK(jobs[2].settings() == std::vector<std::string>{"scale.factor=2", "count.element=all"});
+  CHECK(jobs[6].input.filename() == "ellipsoid.off");
+  std::set<std::string> names;
+  for (const auto& job : jobs) names.insert(job.name);
+  CHECK(names.size() == jobs.size());
+  CHECK(jobs[0].name == "0001-cube-factor=1-element=all");
+  medax::validate_sweep(config, jobs, medax::test::good_registry());
+}
+
+TEST_CASE("inputs may be globs and manifests", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_inputs");
+  write_text(dir / "list.txt", "# two meshes\n" + data_file("cube.off") + "\n\n" + data_file("sphere.obj") + "\n");
+  const fs::path file = write_text(
+      dir / "sweep.yaml", "inputs:\n  - " + (fs::path(MEDAX_TEST_DATA_DIR) / "*.off").string() +
+                              "\n  - {manifest: list.txt}\nstages:\n  - plugin: test_centroid\n");
+  const auto config = medax::load_sweep(file);
+  std::vector<std::string> names;
+  for (const auto& p : config.inputs) names.push_back(p.filename().string());
+  CHECK(names == std::vector<std::string>{"cube.off", "ellipsoid.off", "cube.off", "sphere.obj"});
+}
+
+TEST_CASE("sweep errors are found before any job runs", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_errors");
+  const fs::path file = write_text(dir / "sweep.yaml", "inputs: [nothing_here.off]\nsweep:\n  scale.factor: [1, -5]\n"
+                                                       "stages:\n  - {plugin: test_scale, id: scale}\n");
+  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:1:10") && Catch::Contains("not found"));
+  write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, -5]\n  nodot: [1]\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n");
+  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:4:3") && Catch::Contains("STAGE.PARAM"));
+  write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, -5]\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n");
+  const auto config = medax::load_sweep(file);
+  CHECK_THROWS_WITH(medax::validate_sweep(config, medax::expand_sweep(config), medax::test::good_registry()),
+                    Catch::Contains("sweep scale.factor=-5") && Catch::Contains("must be"));
+}
+
+TEST_CASE("a crashing job and a timed-out job fail alone and are reported", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_isolation");
+  const fs::path file = write_text(
+      dir / "sweep.yaml", "name: isolation\ninput: " + data_file("cube.off") +
+                              "\nlimits: {timeout: 2}\nsweep:\n  crash.crash: [false, true]\n  sleep.seconds: [0, 30]\n"
+                              "stages:\n  - plugin: test_centroid\n  - {plugin: test_crash, id: crash}\n"
+                              "  - {plugin: test_sleep, id: sleep}\n");
+  const auto r = run_medax("run '" + file.string() + "' -j 2 --out '" + (dir / "out").string() + "'", kPlugins, dir);
+  INFO(r.out << r.err);
+  CHECK(r.code == 1);  // some jobs failed
+  const auto lines = lines_of(read_text(dir / "out" / "results.csv"));
+  REQUIRE(lines.size() == 5);
+  const auto header = csv_cells(lines[0]);
+  std::map<std::string, std::string> status;  // "crash,seconds" -> status
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto row = csv_cells(lines[i]);
+    status[column(header, row, "crash.crash") + "," + column(header, row, "sleep.seconds")] =
+        column(header, row, "status");
+  }
+  CHECK(status["false,0"] == "ok");
+  CHECK(status["true,0"] == "crashed");
+  CHECK(status["false,30"] == "timeout");
+  CHECK(status["true,30"] == "crashed");
+  CHECK(r.err.find("4/4 done, 3 failed") != std::string::npos);
+}
+
+TEST_CASE("a sweep resumes: finished jobs are skipped and failed ones run again", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_resume");
+  const fs::path file = write_text(dir / "sweep.yaml", "input: " + data_file("cube.off") +
+                                                           "\nsweep:\n  crash.crash: [false, true]\n"
+                                                           "stages:\n  - plugin: test_centroid\n"
+                                                           "  - {plugin: test_crash, id: crash}\n");
+  const std::string command = "run '" + file.string() + "' --out '" + (dir / "out").string() + "'";
+  const auto first = run_medax(command, kPlugins, dir);
+  CHECK(first.out.find("1 ok, 1 failed, 0 skipped") != std::string::npos);
+  const fs::path ok_job = dir / "out" / "jobs" / "0001-cube-crash=false";
+  REQUIRE(fs::exists(ok_job / "status.json"));
+  const auto stamp = fs::last_write_time(ok_job / "metrics.json");
+  const auto second = run_medax(command, kPlugins, dir);
+  INFO(second.out << second.err);
+  CHECK(second.out.find("0 ok, 1 failed, 1 skipped") != std::string::npos);
+  CHECK(fs::last_write_time(ok_job / "metrics.json") == stamp);
+}
+
+TEST_CASE("results.csv has one row per job with parameters metrics times and status", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_schema");
+  const fs::path file = write_text(
+      dir / "sweep.yaml", "name: schema\ninput: " + data_file("cube.off") +
+                              "\nsweep:\n  scale.factor: [0.5, 1, 2]\nplots:\n  - {x: scale.factor, y: c.vertices}\n"
+                              "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n"
+                              "  - {plugin: test_count, id: c}\n");
+  const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "out").string() + "'", kPlugins, dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto lines = lines_of(read_text(dir / "out" / "results.csv"));
+  REQUIRE(lines.size() == 4);
+  const auto header = csv_cells(lines[0]);
+  const std::vector<std::string> expected{"job",        "input",        "scale.factor", "status",
+                                          "error",      "c.edges",      "c.faces",      "c.vertices",
+                                          "peak_memory_mib", "time.c", "time.scale", "time.test_centroid",
+                                          "time.total"};
+  CHECK(header == expected);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto row = csv_cells(lines[i]);
+    CHECK(column(header, row, "status") == "ok");
+    CHECK(column(header, row, "c.vertices") == "1");
+    CHECK(std::stod(column(header, row, "time.total")) > 0);
+  }
+  CHECK(column(header, csv_cells(lines[3]), "scale.factor") == "2");
+  const std::string md = read_text(dir / "out" / "results.md");
+  CHECK(md.find("| job | input | scale.factor | status |") != std::string::npos);
+  for (const char* ext : {"png", "svg"}) {
+    const fs::path plot = dir / "out" / "plots" / (std::string("c.vertices_vs_scale.factor.") + ext);
+    REQUIRE(fs::exists(plot));
+    const std::string bytes = read_text(plot);
+    CHECK(bytes.find(ext == std::string("png") ? "PNG" : "<svg") != std::string::npos);
+  }
+}

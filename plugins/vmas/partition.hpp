@@ -1,0 +1,27 @@
+#pragma once
+// Shape partitioning (notes §2.3, eq. 8): every active vertex goes to the sphere of least
+// E_v(m_j), lowest index on ties. Brute force over the spheres, parallel over the vertices:
+// each vertex's choice is independent, so the result does not depend on the thread count.
+#include "energy.hpp"
+
+#include <vector>
+
+namespace medax::vmas {
+
+/// cluster_of[v] = argmin_j E_v(m_j), or −1 for inactive vertices (or when there is no sphere).
+void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
+                     std::vector<int>& cluster_of);
+
+/// The clusters as lists: members of sphere i are members[offsets[i] .. offsets[i+1]), ascending.
+struct Clusters {
+  std::vector<Index> offsets{0};
+  std::vector<Index> members;
+  std::size_t count() const { return offsets.size() - 1; }
+  std::size_t size(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
+  const Index* begin(std::size_t i) const { return members.data() + offsets[i]; }
+};
+
+/// Groups the vertices by cluster (counting sort: deterministic, O(N + M)).
+Clusters group_clusters(const std::vector<int>& cluster_of, std::size_t sphere_count);
+
+}  // namespace medax::vmas

@@ -1,0 +1,267 @@
+#include "vmas.hpp"
+
+#include "energy.hpp"
+#include "split.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace medax::vmas {
+
+VmasSolver::VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions options)
+    : input_(std::move(input)), options_(options) {
+  if (!input_) throw std::invalid_argument("vmas: no input");
+  if (input_->vertex_balls.empty())
+    throw std::invalid_argument("vmas: the input was prepared without shrinking balls (InputOptions)");
+  if (options_.min_cluster_size < 1) options_.min_cluster_size = 1;
+  // The first sphere: the largest shrinking ball (the authors' code; notes §2.8).
+  Index best = 0;
+  double best_r = -1;
+  for (Index v = 0; v < input_->size(); ++v)
+    if (input_->active(v) && input_->vertex_balls[v].radius > best_r) best_r = input_->vertex_balls[v].radius, best = v;
+  if (!(best_r > 0)) throw std::runtime_error("vmas: no shrinking ball could be computed on this input");
+  push(input_->vertex_balls[best]);
+  cluster_of_.assign(input_->size(), -1);
+}
+
+SphereId VmasSolver::push(const Sphere& s) {
+  spheres_.push_back(s);
+  ids_.push_back(next_id_);
+  return next_id_++;
+}
+
+std::size_t VmasSolver::partition() {
+  assign_vertices(*input_, spheres_, options_.lambda_partition, cluster_of_);
+  clusters_ = group_clusters(cluster_of_, spheres_.size());
+  // Spheres with a too-small cluster are deleted; their vertices stay unassigned for this
+  // iteration (the authors' code; notes §2.3). Never delete them all.
+  std::vector<int> remap(spheres_.size(), -1);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    if (clusters_.size(i) >= options_.min_cluster_size) remap[i] = static_cast<int>(kept++);
+  if (kept == spheres_.size() || kept == 0) return 0;
+  std::vector<Sphere> spheres;
+  std::vector<SphereId> ids;
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    if (remap[i] >= 0) spheres.push_back(spheres_[i]), ids.push_back(ids_[i]);
+  const std::size_t culled = spheres_.size() - kept;
+  spheres_ = std::move(spheres);
+  ids_ = std::move(ids);
+  for (int& c : cluster_of_)
+    if (c >= 0) c = remap[static_cast<std::size_t>(c)];
+  clusters_ = group_clusters(cluster_of_, spheres_.size());
+  return culled;
+}
+
+void VmasSolver::compute_stats() {
+  const std::size_t n = clusters_.count();
+  stats_.assign(n, ClusterStats{});
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    stats_[i] = cluster_stats(*input_, clusters_.begin(i), clusters_.size(i), spheres_[i], options_.lambda_partition);
+  });
+}
+
+IterationReport VmasSolver::step(bool allow_split) {
+  const VmasInput& in = *input_;
+  const double s2 = in.scale * in.scale;
+  IterationReport rep;
+  rep.iteration = ++iteration_;
+  rep.culled = partition();
+  compute_stats();
+  for (const ClusterStats& st : stats_) rep.energy_partition += st.energy;
+
+  UpdateOptions uo;
+  uo.lambda = options_.lambda_update;
+  uo.rows = options_.sqem_rows;
+  uo.max_iterations = options_.gn_max_iterations;
+  uo.tolerance = options_.gn_tolerance * in.scale;
+  const bool correct = options_.correction == Correction::Always;
+  tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
+    if (clusters_.size(i) == 0) return;
+    Sphere s = update_sphere(in, clusters_.begin(i), clusters_.size(i), spheres_[i], uo).sphere;
+    if (correct) s = in.correct(s);
+    spheres_[i] = s;
+  });
+  compute_stats();
+  for (const ClusterStats& st : stats_) {
+    rep.energy += st.energy;
+    rep.total_error += st.error;
+    rep.max_error = std::max(rep.max_error, st.error);
+  }
+  rep.converged = std::abs(rep.total_error - previous_total_) < options_.converge_eps * s2;
+  previous_total_ = rep.total_error;
+  const bool count_mode = options_.stop_mode == StopMode::Count;
+  const bool target_met = count_mode ? spheres_.size() >= options_.target_spheres
+                                     : rep.max_error < options_.error_threshold * s2;
+  rep.stop = (rep.converged && target_met) || iteration_ >= options_.max_iterations;
+
+  const int period = std::max(1, options_.split_period);
+  if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
+    if (options_.correction == Correction::OnSplit) {
+      tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { spheres_[i] = in.correct(spheres_[i]); });
+      compute_stats();
+    }
+    SplitRound round;
+    round.count_mode = count_mode;
+    round.target = options_.target_spheres;
+    round.threshold = options_.error_threshold * s2;
+    round.fraction = options_.split_fraction;
+    round.max_per_round = options_.split_max_per_round;
+    std::vector<double> errors(stats_.size());
+    for (std::size_t i = 0; i < stats_.size(); ++i) errors[i] = stats_[i].error;
+    const Adjacency adj = cluster_adjacency(in.graph_edges, cluster_of_, spheres_.size());
+    for (Index i : select_splits(errors, adj, round)) {
+      const Sphere& ball = in.vertex_balls[stats_[i].split_vertex];
+      if (!(ball.radius > 0)) continue;
+      push(ball);
+      ++rep.splits;
+    }
+  }
+  rep.spheres = spheres_.size();
+  last_ = rep;
+  return rep;
+}
+
+IterationReport VmasSolver::iterate() { return step(true); }
+IterationReport VmasSolver::relax() { return step(false); }
+
+IterationReport VmasSolver::run(const std::function<bool(const IterationReport&)>& after_each) {
+  IterationReport rep = last_;
+  while (iteration_ < options_.max_iterations) {
+    rep = iterate();
+    if (after_each && !after_each(rep)) break;
+    if (rep.stop) break;
+  }
+  return rep;
+}
+
+void VmasSolver::finish() {
+  if (options_.correction == Correction::End || options_.correction == Correction::OnSplit) {
+    const VmasInput& in = *input_;
+    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { spheres_[i] = in.correct(spheres_[i]); });
+  }
+  if (clusters_.count() != spheres_.size()) partition();
+  compute_stats();
+}
+
+void VmasSolver::refresh_after_edit() {
+  partition();
+  compute_stats();
+  double total = 0;
+  for (const ClusterStats& st : stats_) total += st.error;
+  previous_total_ = total;
+}
+
+std::size_t VmasSolver::index_of(SphereId id) const {
+  const auto it = std::find(ids_.begin(), ids_.end(), id);
+  if (it == ids_.end()) throw std::out_of_range("vmas: no sphere with id " + std::to_string(id));
+  return static_cast<std::size_t>(it - ids_.begin());
+}
+
+bool VmasSolver::contains(SphereId id) const { return std::find(ids_.begin(), ids_.end(), id) != ids_.end(); }
+
+SphereId VmasSolver::split_sphere(SphereId id) {
+  const std::size_t i = index_of(id);
+  Index v;
+  if (i < stats_.size() && clusters_.size(i) > 0) {
+    v = stats_[i].split_vertex;
+  } else {  // not partitioned yet: the vertex nearest to its centre
+    v = input_->nearest_vertex(spheres_[i].centre);
+  }
+  return add_sphere(v);
+}
+
+SphereId VmasSolver::add_sphere(Index vertex) {
+  if (vertex >= input_->size()) throw std::out_of_range("vmas: no input vertex " + std::to_string(vertex));
+  const Sphere& ball = input_->vertex_balls[vertex];
+  if (!(ball.radius > 0)) throw std::invalid_argument("vmas: vertex " + std::to_string(vertex) + " has no shrinking ball");
+  const SphereId id = push(ball);
+  refresh_after_edit();
+  return id;
+}
+
+void VmasSolver::remove_sphere(SphereId id) {
+  const std::size_t i = index_of(id);
+  if (spheres_.size() == 1) throw std::invalid_argument("vmas: cannot remove the last sphere");
+  spheres_.erase(spheres_.begin() + static_cast<std::ptrdiff_t>(i));
+  ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(i));
+  refresh_after_edit();
+}
+
+SphereId VmasSolver::nearest_sphere(const Vec3& p) const {
+  const Vec3 local = p - input_->origin;
+  std::size_t best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const double d = (spheres_[i].centre - local).squaredNorm();
+    if (d < best_d) best_d = d, best = i;
+  }
+  return ids_.at(best);
+}
+
+std::vector<SphereInfo> VmasSolver::spheres() const {
+  std::vector<SphereInfo> out(spheres_.size());
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    SphereInfo& s = out[i];
+    s.id = ids_[i];
+    s.centre = spheres_[i].centre + input_->origin;
+    s.radius = spheres_[i].radius;
+    if (i < stats_.size()) {
+      s.error = stats_[i].error;
+      s.area = stats_[i].area;
+      s.cluster_size = clusters_.size(i);
+      s.split_vertex = stats_[i].split_vertex;
+    }
+  }
+  return out;
+}
+
+SphereInfo VmasSolver::sphere(SphereId id) const { return spheres().at(index_of(id)); }
+
+Adjacency VmasSolver::adjacency() const {
+  return cluster_adjacency(input_->graph_edges, cluster_of_, spheres_.size());
+}
+
+MedialComplex VmasSolver::complex(bool connect, TriangleRule rule) const {
+  MedialComplex mc;
+  const std::size_t n = spheres_.size();
+  for (const Sphere& s : spheres_) mc.add_vertex(s.centre + input_->origin, s.radius);
+  mc.generators.resize(n);
+  for (std::size_t i = 0; i < n && i < clusters_.count(); ++i)
+    mc.generators[i].assign(clusters_.begin(i), clusters_.begin(i) + clusters_.size(i));
+  mc.generator_kind = input_->kind == InputKind::Mesh ? "mesh_vertex" : "sample";
+  auto& error = mc.vertex_props.fields.add("vmas_error", n, 0.0);
+  auto& area = mc.vertex_props.fields.add("vmas_area", n, 0.0);
+  auto& id = mc.vertex_props.labels.add("vmas_id", n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i < stats_.size()) error[i] = stats_[i].error, area[i] = stats_[i].area;
+    id[i] = static_cast<int>(ids_[i]);
+  }
+  if (connect) {
+    const DualComplex d = dual_complex(adjacency(), rule, input_->triangles, cluster_of_);
+    mc.edges = d.edges;
+    mc.faces = d.faces;
+  }
+  return mc;
+}
+
+std::string summary(const VmasOptions& o) {
+  std::ostringstream out;
+  if (o.stop_mode == StopMode::Count)
+    out << "target " << o.target_spheres << " spheres";
+  else
+    out << "error threshold " << o.error_threshold << "·scale²";
+  out << ", λ_partition " << o.lambda_partition << ", λ_update " << o.lambda_update << ", update "
+      << (o.sqem_rows == SqemRows::Paper ? "paper" : "author_code") << ", correction "
+      << (o.correction == Correction::Always    ? "always"
+          : o.correction == Correction::OnSplit ? "on_split"
+          : o.correction == Correction::End     ? "end"
+                                                : "off");
+  return out.str();
+}
+
+}  // namespace medax::vmas

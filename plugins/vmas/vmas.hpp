@@ -1,0 +1,157 @@
+#pragma once
+// VMAS — Dynamic Skeletonization via Variational Medial Axis Sampling (Huang, Kraemer, Thery,
+// Bechmann, SIGGRAPH Asia 2024), as a library with dynamic edits.
+//
+//   auto input = vmas::VmasInput::from_mesh(mesh);          // precompute once
+//   vmas::VmasOptions options;
+//   options.target_spheres = 80;
+//   vmas::VmasSolver solver(input, options);                  // starts from the largest shrinking ball
+//   solver.run();                                             // partition / update / correct / split
+//   auto id = solver.nearest_sphere({0.1, 0.2, 0.3});
+//   solver.split_sphere(id);                                  // edit: one more sphere, here
+//   for (int i = 0; i < 10; ++i) solver.relax();              // continue from the current state
+//   solver.finish();
+//   MedialComplex mc = solver.complex(/*connect=*/true);
+//
+// Every length is in the input's frame; thresholds are relative to the input's largest bounding
+// box side ("scale"), as the paper's are to a unit box: an error threshold t means t·scale².
+// Sphere ids are stable across edits, splits and culls (a culled or removed id disappears).
+#include "dual.hpp"
+#include "input.hpp"
+#include "partition.hpp"
+#include "update.hpp"
+
+#include <medax/medial_complex.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace medax::vmas {
+
+enum class StopMode { Count, Error };
+/// When spheres are projected back onto the medial axis (notes §2.6).
+enum class Correction {
+  Always,   ///< after every update (the authors' default)
+  OnSplit,  ///< before every split round and at the end (the authors' CORRECT_ON_SPLIT)
+  End,      ///< once, at the end (paper Fig. 11, blue)
+  Off,      ///< never
+};
+
+struct VmasOptions {
+  double lambda_partition = 0.2;  ///< λ in eq. 8 (partition and cluster errors)
+  double lambda_update = 0.2;     ///< λ in eq. 11 (the update)
+  SqemRows sqem_rows = SqemRows::Paper;
+  StopMode stop_mode = StopMode::Count;
+  std::size_t target_spheres = 100;  ///< count mode
+  double error_threshold = 2.5e-4;   ///< error mode, × scale²
+  double converge_eps = 1e-5;        ///< |ΔE_tot| below this (× scale²) means converged
+  int split_period = 10;             ///< a split round also every this many iterations
+  double split_fraction = 0.2;       ///< at most ⌈fraction·|M|⌉ splits per round ...
+  std::size_t split_max_per_round = 10;  ///< ... and at most this many
+  std::size_t min_cluster_size = 4;  ///< spheres whose cluster is smaller are deleted
+  int gn_max_iterations = 10;
+  double gn_tolerance = 1e-6;        ///< × scale
+  Correction correction = Correction::Always;
+  int max_iterations = 1000;
+};
+
+using SphereId = std::uint64_t;
+
+/// One sphere and its cluster, in the input's frame.
+struct SphereInfo {
+  SphereId id = 0;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0;
+  double error = 0;             ///< E(C) (eq. 12); 0 before the sphere's first partition
+  double area = 0;              ///< A(C)
+  std::size_t cluster_size = 0;
+  Index split_vertex = 0;       ///< argmax_{v∈C} E_v
+};
+
+struct IterationReport {
+  int iteration = 0;            ///< iterations completed so far (1-based)
+  std::size_t spheres = 0;      ///< after the iteration, new splits included
+  std::size_t culled = 0;       ///< spheres deleted for a too-small cluster
+  std::size_t splits = 0;
+  double energy_partition = 0;  ///< Σ_i Σ_{v∈C_i} E_v(m_i) after the partition
+  double energy = 0;            ///< the same after the update (and correction)
+  double total_error = 0;       ///< E_tot = Σ_i E(C_i)
+  double max_error = 0;
+  bool converged = false;       ///< |ΔE_tot| < converge_eps·scale²
+  bool stop = false;            ///< stop criterion met, or max_iterations reached
+};
+
+class VmasSolver {
+ public:
+  /// Starts from one sphere: the largest shrinking ball of the input (notes §2.8).
+  explicit VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions options = {});
+
+  /// One iteration: partition (+ cull), update (+ correction), errors, and a split round when
+  /// the schedule says so (converged, or every split_period iterations).
+  IterationReport iterate();
+  /// One iteration that never splits (after edits, to let the neighbourhood settle).
+  IterationReport relax();
+  /// Iterates until the stop criterion (or max_iterations). `after_each` sees every report and
+  /// may edit the solver; returning false stops the run.
+  IterationReport run(const std::function<bool(const IterationReport&)>& after_each = {});
+  /// End of a run: the final correction (Correction::End, OnSplit) and the clusters of spheres
+  /// that have none yet. Further iterations remain possible.
+  void finish();
+
+  // ---- dynamic edits: each repartitions and recomputes the errors; no restart -------------
+  /// Adds a sphere: the shrinking ball at the cluster's max-error vertex. Returns its id.
+  SphereId split_sphere(SphereId id);
+  /// Deletes a sphere; its vertices go to the other spheres.
+  void remove_sphere(SphereId id);
+  /// Adds the shrinking ball of input vertex `vertex`. Returns its id.
+  SphereId add_sphere(Index vertex);
+  /// The sphere whose centre is nearest to p (input frame).
+  SphereId nearest_sphere(const Vec3& p) const;
+  bool contains(SphereId id) const;
+
+  // ---- state ----------------------------------------------------------------------------------
+  std::size_t size() const { return spheres_.size(); }
+  std::vector<SphereInfo> spheres() const;
+  SphereInfo sphere(SphereId id) const;
+  /// Per input vertex: the index (into spheres()) of its cluster, or −1.
+  const std::vector<int>& assignment() const { return cluster_of_; }
+  /// Cluster adjacency (indices into spheres()).
+  Adjacency adjacency() const;
+  int iterations() const { return iteration_; }
+  const IterationReport& last_report() const { return last_; }
+  const VmasInput& input() const { return *input_; }
+  const VmasOptions& options() const { return options_; }
+  /// Spheres (centres in the input frame), generators = clusters (mesh vertices or samples),
+  /// vertex fields `vmas_error`, `vmas_area`, label `vmas_id`; with `connect`, the dual's edges
+  /// and triangles.
+  MedialComplex complex(bool connect = false, TriangleRule rule = TriangleRule::Cliques) const;
+
+ private:
+  IterationReport step(bool allow_split);
+  std::size_t partition();  ///< assign + cull; returns the number culled
+  void compute_stats();
+  void refresh_after_edit();
+  std::size_t index_of(SphereId id) const;
+  SphereId push(const Sphere& s);
+
+  std::shared_ptr<const VmasInput> input_;
+  VmasOptions options_;
+  std::vector<Sphere> spheres_;  ///< local frame
+  std::vector<SphereId> ids_;
+  SphereId next_id_ = 0;
+  std::vector<int> cluster_of_;
+  Clusters clusters_;                 ///< for the first clusters_.count() spheres
+  std::vector<ClusterStats> stats_;   ///< same
+  int iteration_ = 0;
+  double previous_total_ = std::numeric_limits<double>::infinity();
+  IterationReport last_;
+};
+
+/// The stop mode and thresholds as one line, for logs.
+std::string summary(const VmasOptions& options);
+
+}  // namespace medax::vmas

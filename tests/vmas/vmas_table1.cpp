@@ -1,0 +1,120 @@
+// The paper's Table 1 protocol (Huang et al. 2024, §4): each model normalised to the unit box
+// (uniform scale by the largest side, notes §7 #14), λ = 0.2, the sphere count of Table 1,
+// VMAS + its dual, error = two-sided Hausdorff distance of the sphere/cone/slab envelope in %
+// of the bbox diagonal. Not a ctest (it takes tens of seconds): run build/tests/vmas_table1
+// [--threads N] [--repeat R] [--meshes DIR] [--set key=value ...] [model ...].
+#include "stages.hpp"
+#include "vmas.hpp"
+
+#ifdef MEDAX_VMAS_HAVE_EVALUATION
+#include "reconstruction.hpp"
+#endif
+
+#include <medax/io.hpp>
+#include <medax/services/envelope.hpp>
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace medax;
+
+namespace {
+
+struct Model {
+  std::string name, file;
+  std::size_t spheres;
+  double paper_error;  // % (Table 1, "Ours")
+  double paper_time;   // s (Table 2, "Ours")
+};
+
+const std::vector<Model> kModels = {
+    {"armadillo", "armadillo.off", 83, 2.735, 2.179},
+    {"fertility", "fertility.off", 98, 1.630, 1.46},
+    {"elephant", "elephant.off", 117, 1.741, 2.226},
+    {"plane", "plane.obj", 86, 1.106, 0.529},
+};
+
+SurfaceMesh unit_box(SurfaceMesh mesh) {
+  Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+  for (const Vec3& p : mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double s = (hi - lo).maxCoeff();
+  for (Vec3& p : mesh.vertices) p = (p - lo) / s;
+  return mesh;
+}
+
+double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
+#ifdef MEDAX_VMAS_HAVE_EVALUATION
+  evaluation::ReconstructionOptions o;  // VMAS protocol: vertices + envelope grid of min side / 150
+  std::mt19937_64 rng(1);
+  const auto r = evaluation::measure_reconstruction(shape, mc, o, rng);
+  return 100.0 * r.hausdorff() / r.diagonal;
+#else
+  (void)shape, (void)mc;
+  return -1;
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::filesystem::path meshes = MEDAX_SHARED_MESHES_DIR;
+  int threads = 0, repeat = 1;
+  std::vector<std::string> only;
+  std::map<std::string, std::string> sets;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc) threads = std::stoi(argv[++i]);
+    else if (a == "--repeat" && i + 1 < argc) repeat = std::stoi(argv[++i]);
+    else if (a == "--meshes" && i + 1 < argc) meshes = argv[++i];
+    else if (a == "--set" && i + 1 < argc) {
+      const std::string kv = argv[++i];
+      sets[kv.substr(0, kv.find('='))] = kv.substr(kv.find('=') + 1);
+    } else only.push_back(a);
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+
+  std::printf("| model | |V| | |M| target | |M| | edges | triangles | iterations | ε (ours) | ε (paper) | ratio | "
+              "time (s) | paper time (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Model& m : kModels) {
+    if (!only.empty() && std::find(only.begin(), only.end(), m.name) == only.end()) continue;
+    Shape shape;
+    shape.mesh = unit_box(read_mesh(meshes / m.file));
+    ParamSet params = default_params(vmas::VmasStage::describe().params);
+    params.set("target_spheres", static_cast<long long>(m.spheres));
+    for (const auto& [k, v] : sets) {
+      const ParamValue& cur = params.at(k);
+      if (std::holds_alternative<double>(cur)) params.set(k, std::stod(v));
+      else if (std::holds_alternative<long long>(cur)) params.set(k, std::stoll(v));
+      else params.set(k, v);
+    }
+    double best = 1e300;
+    MedialComplex mc;
+    int iterations = 0;
+    for (int r = 0; r < repeat; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto input = vmas::VmasStage::make_input(shape, "mesh", vmas::VmasStage::input_options(params));
+      vmas::VmasSolver solver(input, vmas::VmasStage::solver_options(params));
+      solver.run();
+      solver.finish();
+      mc = solver.complex(true, vmas::TriangleRule::Cliques);
+      const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      best = std::min(best, t);
+      iterations = solver.iterations();
+    }
+    const double err = hausdorff_percent(shape, mc);
+    std::printf("| %s | %zu | %zu | %zu | %zu | %zu | %d | %.3f%% | %.3f%% | %.2f | %.3f | %.3f |\n", m.name.c_str(),
+                shape.mesh.vertices.size(), m.spheres, mc.num_vertices(), mc.edges.size(), mc.faces.size(), iterations,
+                err, m.paper_error, err / m.paper_error, best, m.paper_time);
+    std::fflush(stdout);
+  }
+  return 0;
+}

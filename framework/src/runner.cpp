@@ -2,6 +2,7 @@
 #include <medax/io.hpp>
 #include <medax/kernel/runner.hpp>
 
+#include "json_file.hpp"
 #include "run_context.hpp"
 
 #include <fmt/format.h>
@@ -53,10 +54,6 @@ nlohmann::json metrics_json(const Scene& scene) {
   return all;
 }
 
-void write_json(const fs::path& path, const nlohmann::json& j) {
-  write_file_atomic(path, [&](std::ostream& out) { out << j.dump(2) << '\n'; });
-}
-
 /// Writes the configured outputs of the scene as it stands.
 void write_outputs(const PipelineConfig& config, const Scene& scene, const fs::path& dir, spdlog::logger& log) {
   const Similarity frame = config.outputs.input_frame ? scene.shape.to_input : Similarity{};
@@ -77,7 +74,7 @@ void write_outputs(const PipelineConfig& config, const Scene& scene, const fs::p
       log.info("wrote surface.{}", ext);
     }
   }
-  write_json(dir / "metrics.json", metrics_json(scene));
+  detail::write_json_file(dir / "metrics.json", metrics_json(scene));
 }
 
 }  // namespace
@@ -152,7 +149,7 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     tj["stages"].push_back({{"id", t.id}, {"plugin", t.plugin}, {"seconds", t.seconds},
                             {"peak_memory_mib", t.peak_memory_mib}, {"ok", t.ok}});
   tj["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
-  write_json(options.out_dir / "timings.json", tj);
+  detail::write_json_file(options.out_dir / "timings.json", tj);
 
   result.ok = result.failed_stage.empty();
   if (result.ok) log->info("done: results in {}", options.out_dir.string());

@@ -3,7 +3,7 @@
 #include <medax/kernel/sweep.hpp>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include "json_file.hpp"
 
 #include <cstdlib>
 #include <fstream>
@@ -17,30 +17,20 @@ namespace {
 
 using Row = std::map<std::string, std::string>;
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 std::string number(double v) { return fmt::format("{}", v); }
 
 Row job_row(const SweepJob& job, const fs::path& dir) {
   Row row{{"job", job.name}, {"input", job.input.stem().string()}};
   for (const auto& [key, value] : job.assignment) row[key] = value;
-  const nlohmann::json status = read_json(dir / "status.json");
+  const nlohmann::json status = detail::read_json_file(dir / "status.json");
   row["status"] = status.is_object() ? status.value("status", "unknown") : "not run";
   if (status.is_object() && status.contains("error")) row["error"] = status["error"].get<std::string>();
-  const nlohmann::json metrics = read_json(dir / "metrics.json");
+  const nlohmann::json metrics = detail::read_json_file(dir / "metrics.json");
   if (metrics.is_object())
     for (const auto& [stage, values] : metrics.items())
       for (const auto& [name, value] : values.items())
         row[stage + "." + name] = value.is_number() ? number(value.get<double>()) : "";
-  const nlohmann::json timings = read_json(dir / "timings.json");
+  const nlohmann::json timings = detail::read_json_file(dir / "timings.json");
   if (timings.is_object()) {
     double peak = 0;
     for (const auto& stage : timings.value("stages", nlohmann::json::array())) {

@@ -6,7 +6,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include "json_file.hpp"
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -31,18 +31,8 @@ struct Running {
   bool timed_out = false;
 };
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 bool already_done(const SweepJob& job, const fs::path& dir) {
-  const nlohmann::json status = read_json(dir / "status.json");
+  const nlohmann::json status = detail::read_json_file(dir / "status.json");
   return status.is_object() && status.value("status", "") == "ok" &&
          status.value("settings", std::vector<std::string>{}) == job.settings() &&
          status.value("input", "") == job.input.string();
@@ -121,7 +111,7 @@ void record_status(const SweepJob& job, const fs::path& dir, int wait_status, bo
     }
   }
   status["status"] = state;
-  write_file_atomic(dir / "status.json", [&](std::ostream& out) { out << status.dump(2) << '\n'; });
+  detail::write_json_file(dir / "status.json", status);
 }
 
 std::string duration_text(double seconds) {

@@ -3,9 +3,37 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <limits>
 
 namespace medax::vmas {
+
+namespace {
+
+/// E_v against every sphere, into e[0 .. count). Structure of arrays over the spheres, so the
+/// loop vectorises. Same operations, in the same order, as vertex_energy() (energy.hpp), so both
+/// give identical values.
+__attribute__((noinline)) void energies(const PackedQuadric& Q, double px, double py, double pz, double w,
+                                        const double* const* terms, std::size_t count, double* __restrict e) {
+  const double k0 = Q.k[0], k1 = Q.k[1], k2 = Q.k[2], k3 = Q.k[3], k4 = Q.k[4], k5 = Q.k[5], k6 = Q.k[6],
+               k7 = Q.k[7], k8 = Q.k[8], k9 = Q.k[9], k10 = Q.k[10], k11 = Q.k[11], k12 = Q.k[12], k13 = Q.k[13],
+               c = Q.c;
+  const double *__restrict m0 = terms[0], *__restrict m1 = terms[1], *__restrict m2 = terms[2],
+               *__restrict m3 = terms[3], *__restrict m4 = terms[4], *__restrict m5 = terms[5],
+               *__restrict m6 = terms[6], *__restrict m7 = terms[7], *__restrict m8 = terms[8],
+               *__restrict m9 = terms[9], *__restrict m10 = terms[10], *__restrict m11 = terms[11],
+               *__restrict m12 = terms[12], *__restrict m13 = terms[13];
+  for (std::size_t j = 0; j < count; ++j) {
+    const double q = c + k0 * m0[j] + k1 * m1[j] + k2 * m2[j] + k3 * m3[j] + k4 * m4[j] + k5 * m5[j] + k6 * m6[j] +
+                     k7 * m7[j] + k8 * m8[j] + k9 * m9[j] + k10 * m10[j] + k11 * m11[j] + k12 * m12[j] +
+                     k13 * m13[j];
+    const double dx = px - m10[j], dy = py - m11[j], dz = pz - m12[j];
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz) - m13[j];
+    e[j] = q + w * d * d;
+  }
+}
+
+}  // namespace
 
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
                      std::vector<int>& cluster_of) {
@@ -14,20 +42,14 @@ void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, do
   if (count == 0) return;
   SphereTerms terms;
   terms.set(spheres);
+  const double* columns[14];
+  for (int i = 0; i < 14; ++i) columns[i] = terms.m[i].data();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<double> e(count);
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
       if (!in.active(static_cast<Index>(v))) continue;
-      const PackedQuadric& Q = in.quadrics[v];
       const Vec3& p = in.points[v];
-      const double w = lambda * in.areas[v];
-      // Structure of arrays over the spheres: this loop vectorises.
-      const auto& m = terms.m;
-      for (std::size_t j = 0; j < count; ++j) {
-        const double mj[14] = {m[0][j], m[1][j], m[2][j],  m[3][j],  m[4][j],  m[5][j],  m[6][j],
-                               m[7][j], m[8][j], m[9][j], m[10][j], m[11][j], m[12][j], m[13][j]};
-        e[j] = vertex_energy(Q, p, w, mj);
-      }
+      energies(in.quadrics[v], p.x(), p.y(), p.z(), lambda * in.areas[v], columns, count, e.data());
       std::size_t best = 0;
       double best_e = e[0];
       for (std::size_t j = 1; j < count; ++j)

@@ -6,11 +6,27 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace medax::vmas {
+
+namespace {
+/// Adds the wall time of its scope to a counter.
+class Timer {
+ public:
+  explicit Timer(double& sink) : sink_(sink), start_(std::chrono::steady_clock::now()) {}
+  ~Timer() { sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  Timer(const Timer&) = delete;
+  Timer& operator=(const Timer&) = delete;
+
+ private:
+  double& sink_;
+  std::chrono::steady_clock::time_point start_;
+};
+}  // namespace
 
 VmasSolver::VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions options)
     : input_(std::move(input)), options_(options) {
@@ -70,27 +86,41 @@ IterationReport VmasSolver::step(bool allow_split) {
   const double s2 = in.scale * in.scale;
   IterationReport rep;
   rep.iteration = ++iteration_;
-  rep.culled = partition();
-  compute_stats();
-  for (const ClusterStats& st : stats_) rep.energy_partition += st.energy;
+  {
+    Timer t(times_.partition);
+    rep.culled = partition();
+  }
+  {
+    Timer t(times_.errors);
+    compute_stats();
+    for (const ClusterStats& st : stats_) rep.energy_partition += st.energy;
+  }
 
   UpdateOptions uo;
   uo.lambda = options_.lambda_update;
   uo.rows = options_.sqem_rows;
   uo.max_iterations = options_.gn_max_iterations;
   uo.tolerance = options_.gn_tolerance * in.scale;
-  const bool correct = options_.correction == Correction::Always;
-  tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
-    if (clusters_.size(i) == 0) return;
-    Sphere s = update_sphere(in, clusters_.begin(i), clusters_.size(i), spheres_[i], uo).sphere;
-    if (correct) s = in.correct(s);
-    spheres_[i] = s;
-  });
-  compute_stats();
-  for (const ClusterStats& st : stats_) {
-    rep.energy += st.energy;
-    rep.total_error += st.error;
-    rep.max_error = std::max(rep.max_error, st.error);
+  {
+    Timer t(times_.update);
+    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
+      if (clusters_.size(i) > 0) spheres_[i] = update_sphere(in, clusters_.begin(i), clusters_.size(i), spheres_[i], uo).sphere;
+    });
+  }
+  if (options_.correction == Correction::Always) {
+    Timer t(times_.correction);
+    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
+      if (clusters_.size(i) > 0) spheres_[i] = in.correct(spheres_[i]);
+    });
+  }
+  {
+    Timer t(times_.errors);
+    compute_stats();
+    for (const ClusterStats& st : stats_) {
+      rep.energy += st.energy;
+      rep.total_error += st.error;
+      rep.max_error = std::max(rep.max_error, st.error);
+    }
   }
   rep.converged = std::abs(rep.total_error - previous_total_) < options_.converge_eps * s2;
   previous_total_ = rep.total_error;
@@ -101,6 +131,7 @@ IterationReport VmasSolver::step(bool allow_split) {
 
   const int period = std::max(1, options_.split_period);
   if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
+    Timer t(times_.splits);
     if (options_.correction == Correction::OnSplit) {
       tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { spheres_[i] = in.correct(spheres_[i]); });
       compute_stats();
@@ -149,6 +180,7 @@ void VmasSolver::finish() {
 }
 
 void VmasSolver::refresh_after_edit() {
+  Timer t(times_.edits);
   partition();
   compute_stats();
   double total = 0;

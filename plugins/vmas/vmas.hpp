@@ -85,6 +85,12 @@ struct IterationReport {
   bool stop = false;            ///< stop criterion met, or max_iterations reached
 };
 
+/// Wall time spent in each phase since the solver was made (seconds).
+struct PhaseTimes {
+  double partition = 0, update = 0, correction = 0, errors = 0, splits = 0, edits = 0;
+  double total() const { return partition + update + correction + errors + splits + edits; }
+};
+
 class VmasSolver {
  public:
   /// Starts from one sphere: the largest shrinking ball of the input (notes §2.8).
@@ -125,6 +131,7 @@ class VmasSolver {
   const IterationReport& last_report() const { return last_; }
   const VmasInput& input() const { return *input_; }
   const VmasOptions& options() const { return options_; }
+  const PhaseTimes& times() const { return times_; }
   /// Spheres (centres in the input frame), generators = clusters (mesh vertices or samples),
   /// vertex fields `vmas_error`, `vmas_area`, label `vmas_id`; with `connect`, the dual's edges
   /// and triangles.
@@ -149,6 +156,7 @@ class VmasSolver {
   int iteration_ = 0;
   double previous_total_ = std::numeric_limits<double>::infinity();
   IterationReport last_;
+  PhaseTimes times_;
 };
 
 /// The stop mode and thresholds as one line, for logs.

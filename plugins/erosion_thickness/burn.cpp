@@ -1,0 +1,237 @@
+#include "burn.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <stdexcept>
+
+namespace medax::et {
+
+BurnGraph build_burn_graph(const TriangleComplex& cx, double omega, int min_samples) {
+  if (!(omega > 0) || !std::isfinite(omega)) throw std::invalid_argument("erosion thickness: omega must be > 0");
+  if (min_samples < 0) throw std::invalid_argument("erosion thickness: min_samples must be >= 0");
+  BurnGraph g;
+  g.cx = &cx;
+  g.vsec = compute_vertex_sectors(cx);
+  const Index V = static_cast<Index>(cx.num_vertices());
+  const std::size_t ne = cx.num_edges();
+
+  g.sample_begin.resize(ne + 1);
+  std::size_t total = V;
+  for (std::size_t e = 0; e < ne; ++e) {
+    g.sample_begin[e] = static_cast<Index>(total);
+    const double l = (cx.points[cx.edges[e][1]] - cx.points[cx.edges[e][0]]).norm();
+    const double n = std::max<double>(min_samples, std::floor(l / omega));
+    total += static_cast<std::size_t>(n);
+    if (total >= 0xfffffff0u)
+      throw std::runtime_error("erosion thickness: omega is too small for this complex (more than 4e9 graph nodes)");
+  }
+  g.sample_begin[ne] = static_cast<Index>(total);
+
+  g.pos.resize(total);
+  g.radius.resize(total);
+  g.sample_edge.resize(total - V);
+  for (Index v = 0; v < V; ++v) g.pos[v] = cx.points[v], g.radius[v] = cx.radii[v];
+  for (std::size_t e = 0; e < ne; ++e) {
+    const Index a = cx.edges[e][0], b = cx.edges[e][1];
+    const Index n = g.sample_begin[e + 1] - g.sample_begin[e];
+    for (Index k = 0; k < n; ++k) {
+      const double s = double(k + 1) / double(n + 1);
+      const Index id = g.sample_begin[e] + k;
+      g.pos[id] = (1 - s) * cx.points[a] + s * cx.points[b];
+      g.radius[id] = (1 - s) * cx.radii[a] + s * cx.radii[b];
+      g.sample_edge[id - V] = static_cast<Index>(e);
+    }
+  }
+
+  g.sector_begin.resize(total + 1);
+  g.boundary.resize(total);
+  g.sector_begin[0] = 0;
+  for (Index v = 0; v < V; ++v) {
+    g.sector_begin[v + 1] = g.vsec.sector_begin[v + 1];
+    g.boundary[v] = g.vsec.boundary[v];
+  }
+  for (std::size_t id = V; id < total; ++id) {
+    const Index k = cx.edge_degree(g.sample_edge[id - V]);
+    g.sector_begin[id + 1] = g.sector_begin[id] + (k <= 2 ? 1 : k);
+    g.boundary[id] = k == 1 ? 1 : 0;
+  }
+  return g;
+}
+
+std::size_t BurnGraph::count_arcs() const {
+  std::size_t arcs = 0;
+  for (std::size_t t = 0; t < cx->num_triangles(); ++t) {
+    std::size_t n[3], sum = 0;
+    for (int j = 0; j < 3; ++j) sum += n[j] = samples_on(cx->tri_edges[t][j]);
+    const std::size_t nt = 3 + sum;
+    std::size_t tri_arcs = nt * (nt - 1) / 2;
+    for (int j = 0; j < 3; ++j) tri_arcs -= (n[j] + 2) * (n[j] + 1) / 2;
+    arcs += tri_arcs + sum + 3;
+  }
+  return arcs;
+}
+
+namespace {
+
+struct Entry {
+  double time;
+  Index node;
+  std::uint32_t version;
+};
+struct Later {
+  bool operator()(const Entry& a, const Entry& b) const {
+    return a.time > b.time || (a.time == b.time && a.node > b.node);
+  }
+};
+
+/// Per-node exposure test (§3): among the unburned sectors U, the bridges of H_v[U] are
+/// exposed. Marks them burned and returns how many sectors stay unburned.
+class Exposure {
+ public:
+  explicit Exposure(const BurnGraph& g) : g_(g) {}
+
+  template <typename OnExposed>
+  int expose(Index n, std::vector<char>& burned, OnExposed&& on_exposed) {
+    const Index s0 = g_.sector_begin[n], ns = g_.sector_begin[n + 1] - s0;
+    if (!g_.is_vertex(n)) {
+      const Index k = g_.cx->edge_degree(g_.sample_edge[n - g_.num_vertices()]);
+      if (k == 2) return burned[s0] ? 0 : 1;  // one self-loop: never exposed
+      int unburned = 0;
+      Index last = 0;
+      for (Index i = 0; i < ns; ++i)
+        if (!burned[s0 + i]) ++unburned, last = s0 + i;
+      if (unburned == 1) {  // k = 1, or the last of k >= 3 parallel sectors
+        burned[last] = 1;
+        on_exposed(last);
+        return 0;
+      }
+      return unburned;
+    }
+    // Vertex: bridges of H_v restricted to the unburned sectors.
+    const VertexSectors& vs = g_.vsec;
+    const int nh = vs.h_nodes[n];
+    unburned_.clear();
+    for (Index i = 0; i < ns; ++i)
+      if (!burned[s0 + i]) unburned_.push_back(s0 + i);
+    if (unburned_.empty()) return 0;
+    if (unburned_.size() == 1) {
+      const Index s = unburned_[0];
+      if (vs.end_a[s] == vs.end_b[s]) return 1;
+      burned[s] = 1;
+      on_exposed(s);
+      return 0;
+    }
+    exposed_.clear();
+    for (std::size_t a = 0; a < unburned_.size(); ++a) {
+      const Index s = unburned_[a];
+      if (vs.end_a[s] == vs.end_b[s]) continue;
+      parent_.resize(nh);
+      std::iota(parent_.begin(), parent_.end(), 0);
+      for (std::size_t b = 0; b < unburned_.size(); ++b)
+        if (b != a) unite(vs.end_a[unburned_[b]], vs.end_b[unburned_[b]]);
+      if (find(vs.end_a[s]) != find(vs.end_b[s])) exposed_.push_back(s);
+    }
+    for (Index s : exposed_) {
+      burned[s] = 1;
+      on_exposed(s);
+    }
+    return static_cast<int>(unburned_.size() - exposed_.size());
+  }
+
+ private:
+  int find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+  const BurnGraph& g_;
+  std::vector<Index> unburned_, exposed_;
+  std::vector<int> parent_;
+};
+
+}  // namespace
+
+BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
+  const std::size_t N = g.num_nodes(), S = g.num_sectors();
+  BurnResult r;
+  std::vector<double> node_time(N, kInf), sector_time(S, kInf);
+  std::vector<char> node_burned(N, 0), sector_burned(S, 0);
+  std::vector<Index> prime_sector(N, kNone);
+  std::vector<std::uint32_t> version(N, 0);
+  r.prime_node.assign(S, kNone);
+  r.prime_tri.assign(S, kNone);
+  r.burn_order.reserve(N);
+
+  std::vector<Entry> storage;
+  storage.reserve(N);
+  std::priority_queue<Entry, std::vector<Entry>, Later> queue(Later{}, std::move(storage));
+  for (Index n = 0; n < N; ++n)
+    if (g.boundary[n]) {
+      node_time[n] = g.radius[n];
+      queue.push({node_time[n], n, 0});
+    }
+
+  Exposure exposure(g);
+  while (!queue.empty()) {
+    const Entry top = queue.top();
+    queue.pop();
+    const Index v = top.node;
+    if (node_burned[v] || top.version != version[v]) continue;
+    if (top.time == kInf) break;  // only closed surfaces remain
+    ++r.pops;
+    if (cancel && (r.pops & 0xffff) == 0) cancel();
+    const double time = node_time[v];
+    if (prime_sector[v] != kNone) sector_burned[g.sector_begin[v] + prime_sector[v]] = 1;
+    const int left = exposure.expose(v, sector_burned, [&](Index s) {
+      sector_time[s] = time;
+      r.prime_node[s] = kNone;
+      r.prime_tri[s] = kNone;
+    });
+    if (left == 0) {
+      node_burned[v] = 1;
+      r.burn_order.push_back(v);
+      const Vec3 pv = g.pos[v];
+      for_each_arc(g, v, [&](Index u, Index t) {
+        if (node_burned[u]) return;
+        const Index ts = g.sector_begin[u] + g.local_sector(u, t);
+        if (sector_burned[ts]) return;
+        ++r.relaxations;
+        const double h = time + (g.pos[u] - pv).norm();
+        if (h < sector_time[ts]) {
+          sector_time[ts] = h;
+          r.prime_node[ts] = v;
+          r.prime_tri[ts] = t;
+          if (h < node_time[u]) {
+            node_time[u] = h;
+            prime_sector[u] = ts - g.sector_begin[u];
+            queue.push({h, u, ++version[u]});
+          }
+        }
+      });
+    } else {
+      Index best = kNone;
+      for (Index s = g.sector_begin[v]; s < g.sector_begin[v + 1]; ++s)
+        if (!sector_burned[s] && (best == kNone || sector_time[s] < sector_time[best])) best = s;
+      prime_sector[v] = best - g.sector_begin[v];
+      node_time[v] = sector_time[best];
+      queue.push({node_time[v], v, ++version[v]});
+    }
+  }
+  r.bt.resize(N);
+  for (std::size_t n = 0; n < N; ++n) r.bt[n] = node_burned[n] ? node_time[n] : kInf;
+  return r;
+}
+
+std::vector<double> erosion_thickness(const BurnGraph& g, const BurnResult& r) {
+  std::vector<double> et(g.num_nodes());
+  for (std::size_t n = 0; n < et.size(); ++n) et[n] = r.bt[n] == kInf ? kInf : r.bt[n] - g.radius[n];
+  return et;
+}
+
+}  // namespace medax::et

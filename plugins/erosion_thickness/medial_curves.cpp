@@ -1,0 +1,378 @@
+#include "medial_curves.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace medax::et {
+
+std::array<Index, 2> Subdivision::segment_nodes(const BurnGraph& g, Index s) const {
+  const Index e = static_cast<Index>(std::upper_bound(segment_begin.begin(), segment_begin.end(), s) -
+                                     segment_begin.begin()) - 1;
+  const Index q = s - segment_begin[e], n = g.samples_on(e);
+  const auto& ed = g.cx->edges[e];
+  auto edge_node = [&](Index k) { return k == 0 ? ed[0] : k == n + 1 ? ed[1] : g.sample_begin[e] + (k - 1); };
+  return {edge_node(q), edge_node(q + 1)};
+}
+
+namespace {
+
+/// Weighted dual point (notes §5.2): sum BT_i p_i / sum BT_i; BT_M there is sum BT_i^2 / sum BT_i
+/// and R the same weighted average of R_i. Uniform weights when a BT is inf or all are 0.
+void dual_point(const BurnGraph& g, const std::vector<double>& bt, const Index* nodes, std::size_t n, Vec3& p,
+                double& b, double& r) {
+  double wsum = 0, b2 = 0;
+  bool finite = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = bt[nodes[i]];
+    if (!std::isfinite(w)) finite = false;
+    wsum += w;
+    b2 += w * w;
+  }
+  const bool uniform = !finite || !(wsum > 0);
+  p.setZero();
+  r = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = uniform ? 1.0 : bt[nodes[i]];
+    p += w * g.pos[nodes[i]];
+    r += w * g.radius[nodes[i]];
+  }
+  const double norm = uniform ? double(n) : wsum;
+  p /= norm;
+  r /= norm;
+  b = !finite ? kInf : wsum > 0 ? b2 / wsum : 0.0;
+}
+
+}  // namespace
+
+Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
+  const TriangleComplex& cx = *g.cx;
+  const std::size_t nt = cx.num_triangles(), ne = cx.num_edges();
+  const Index N = static_cast<Index>(g.num_nodes());
+  Subdivision sub;
+  sub.num_nodes = N;
+  sub.segment_begin.resize(ne + 1);
+  Index S = 0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    sub.segment_begin[e] = S;
+    S += g.samples_on(static_cast<Index>(e)) + 1;
+  }
+  sub.segment_begin[ne] = S;
+  sub.num_segments = S;
+
+  // Burn-tree arcs per triangle.
+  std::vector<Index> arc_begin(nt + 1, 0);
+  for (Index n = 0; n < N; ++n)
+    for (Index s = g.sector_begin[n]; s < g.sector_begin[n + 1]; ++s)
+      if (burn.prime_tri[s] != kNone) ++arc_begin[burn.prime_tri[s] + 1];
+  std::partial_sum(arc_begin.begin(), arc_begin.end(), arc_begin.begin());
+  std::vector<Segment> arcs(arc_begin[nt]);
+  {
+    std::vector<Index> fill(arc_begin.begin(), arc_begin.end() - 1);
+    for (Index n = 0; n < N; ++n)
+      for (Index s = g.sector_begin[n]; s < g.sector_begin[n + 1]; ++s)
+        if (burn.prime_tri[s] != kNone) arcs[fill[burn.prime_tri[s]]++] = {burn.prime_node[s], n};
+  }
+
+  // Residue: unburned nodes; triangles whose nodes are all unburned.
+  std::vector<char> tri_residue(nt, 0);
+  sub.node_in_residue.assign(N, 0);
+
+  std::vector<Index> poly;             // polygon corners (node ids)
+  std::vector<Index> poly_seg;         // side i (poly i -> i+1): segment id
+  std::vector<char> poly_covered;
+  std::vector<std::array<Index, 2>> chords;
+  std::vector<std::vector<Index>> nbrs;
+  std::vector<std::pair<Index, Index>> directed;  // visited directed edges (a, b)
+  std::vector<Index> face;
+  sub.tri_face_begin.assign(nt + 1, 0);
+  sub.face_begin.push_back(0);
+
+  for (Index t = 0; t < nt; ++t) {
+    sub.tri_face_begin[t] = static_cast<Index>(sub.face_tri.size());
+    // Polygon of the triangle's nodes, in corner order.
+    poly.clear();
+    poly_seg.clear();
+    Index off[3];
+    for (int j = 0; j < 3; ++j) {
+      off[j] = static_cast<Index>(poly.size());
+      const Index e = cx.tri_edges[t][j], n = g.samples_on(e);
+      const bool fwd = cx.side_forward(t, j);
+      for (Index k = 0; k <= n; ++k) {
+        poly.push_back(g.side_node(t, j, k));
+        poly_seg.push_back(sub.segment_begin[e] + (fwd ? k : n - k));
+      }
+    }
+    const Index P = static_cast<Index>(poly.size());
+    bool residue = true;
+    for (Index x : poly) residue = residue && !std::isfinite(burn.bt[x]);
+    tri_residue[t] = residue;
+    if (residue) {
+      ++sub.residue_triangles;
+      for (Index x : poly) sub.node_in_residue[x] = 1;
+    }
+    auto poly_index = [&](Index node) -> Index {
+      const Tri& c = cx.triangles[t];
+      for (int j = 0; j < 3; ++j)
+        if (c[j] == node) return off[j];
+      const Index e = g.sample_edge[node - g.num_vertices()];
+      const auto& te = cx.tri_edges[t];
+      const int j = te[0] == e ? 0 : te[1] == e ? 1 : 2;
+      const Index n = g.samples_on(e), i = node - g.sample_begin[e];
+      return off[j] + (cx.side_forward(t, j) ? i + 1 : n - i);
+    };
+    poly_covered.assign(P, 0);
+    chords.clear();
+    for (Index a = arc_begin[t]; a < arc_begin[t + 1]; ++a) {
+      Index i = poly_index(arcs[a][0]), k = poly_index(arcs[a][1]);
+      if (i > k) std::swap(i, k);
+      if (k == i + 1) {
+        poly_covered[i] = 1;
+        continue;
+      }
+      if (i == 0 && k == P - 1) {
+        poly_covered[P - 1] = 1;
+        continue;
+      }
+      bool crosses = false;
+      for (const auto& c : chords)
+        if ((c[0] < i && i < c[1] && c[1] < k) || (i < c[0] && c[0] < k && k < c[1])) crosses = true;
+      if (crosses) {
+        ++sub.crossing_arcs;
+        continue;
+      }
+      chords.push_back({i, k});
+    }
+    // Faces: walk the planar graph of sides and chords of the convex polygon. At corner b,
+    // neighbours in counter-clockwise order have increasing offsets (c - b) mod P; arriving
+    // from a, the face continues to the neighbour with the largest offset below a's.
+    nbrs.assign(P, {});
+    for (Index i = 0; i < P; ++i) nbrs[i].push_back((i + 1) % P), nbrs[(i + 1) % P].push_back(i);
+    for (const auto& c : chords) nbrs[c[0]].push_back(c[1]), nbrs[c[1]].push_back(c[0]);
+    directed.clear();
+    auto visited = [&](Index a, Index b) {
+      return std::find(directed.begin(), directed.end(), std::pair<Index, Index>{a, b}) != directed.end();
+    };
+    auto walk = [&](Index a0, Index b0) {
+      face.clear();
+      Index a = a0, b = b0;
+      do {
+        directed.push_back({a, b});
+        face.push_back(a);
+        const Index oa = (a + P - b) % P;
+        Index best = kNone, best_off = 0;
+        for (Index c : nbrs[b]) {
+          const Index oc = (c + P - b) % P;
+          if (oc < oa && (best == kNone || oc > best_off)) best = c, best_off = oc;
+        }
+        a = b;
+        b = best;
+      } while (!(a == a0 && b == b0) && face.size() <= 2 * P);
+      // Emit the face.
+      sub.face_tri.push_back(t);
+      sub.face_residue.push_back(residue);
+      for (std::size_t k = 0; k < face.size(); ++k) {
+        const Index i = face[k], j = face[(k + 1) % face.size()];
+        sub.corners.push_back(poly[i]);
+        if (j == (i + 1) % P) {
+          sub.side_segment.push_back(poly_seg[i]);
+          sub.side_covered.push_back(poly_covered[i]);
+        } else {
+          sub.side_segment.push_back(kNone);
+          sub.side_covered.push_back(0);
+        }
+      }
+      sub.face_begin.push_back(static_cast<Index>(sub.corners.size()));
+    };
+    for (Index i = 0; i < P; ++i)
+      if (!visited(i, (i + 1) % P)) walk(i, (i + 1) % P);
+    for (const auto& c : chords) {
+      if (!visited(c[0], c[1])) walk(c[0], c[1]);
+      if (!visited(c[1], c[0])) walk(c[1], c[0]);
+    }
+  }
+  sub.tri_face_begin[nt] = static_cast<Index>(sub.face_tri.size());
+  const Index F = sub.num_faces();
+
+  // Residue segments: on an edge of a residue triangle.
+  std::vector<char> edge_residue(ne, 0);
+  for (Index t = 0; t < nt; ++t)
+    if (tri_residue[t])
+      for (int j = 0; j < 3; ++j) edge_residue[cx.tri_edges[t][j]] = 1;
+  auto segment_residue = [&](Index s) {
+    const Index e = static_cast<Index>(std::upper_bound(sub.segment_begin.begin(), sub.segment_begin.end(), s) -
+                                       sub.segment_begin.begin()) - 1;
+    return edge_residue[e] != 0;
+  };
+  auto segment_edge = [&](Index s) {
+    return static_cast<Index>(std::upper_bound(sub.segment_begin.begin(), sub.segment_begin.end(), s) -
+                              sub.segment_begin.begin()) - 1;
+  };
+
+  // Curve edges.
+  sub.segment_used.assign(S, 0);
+  const std::size_t npoints = std::size_t(N) + S + F;
+  sub.curve_anchor.assign(npoints, 0);
+  for (Index f = 0; f < F; ++f) {
+    if (sub.face_residue[f]) continue;
+    const Index b = sub.face_begin[f], m = sub.face_begin[f + 1] - b;
+    const Index fp = sub.face_point(f);
+    std::size_t connections = 0;
+    Index boundary_fallback = kNone;
+    // Contact elements with the residue: element 2k = corner k, 2k+1 = side k.
+    auto contact = [&](Index el) -> bool {
+      const Index k = el / 2;
+      if (el % 2 == 0) return sub.node_in_residue[sub.corners[b + k]] != 0;
+      const Index s = sub.side_segment[b + k];
+      return s != kNone && !sub.side_covered[b + k] && segment_residue(s);
+    };
+    const Index E = 2 * m;
+    bool any_contact = false, all_contact = true;
+    for (Index el = 0; el < E; ++el) {
+      const bool c = contact(el);
+      any_contact = any_contact || c;
+      all_contact = all_contact && c;
+    }
+    for (Index k = 0; k < m; ++k) {
+      const Index s = sub.side_segment[b + k];
+      if (s == kNone || sub.side_covered[b + k]) continue;
+      if (segment_residue(s)) continue;  // handled by the contact runs
+      if (g.cx->edge_degree(segment_edge(s)) == 1) {
+        if (boundary_fallback == kNone) boundary_fallback = s;
+        continue;
+      }
+      sub.curve_edges.push_back({fp, sub.segment_point(s)});
+      sub.segment_used[s] = 1;
+      ++connections;
+    }
+    if (any_contact && !all_contact) {
+      // Start right after a non-contact element, then take one representative per run.
+      Index start = 0;
+      while (contact(start)) ++start;
+      Index rep = kNone;
+      bool rep_is_segment = false;
+      for (Index i = 1; i <= E; ++i) {
+        const Index el = (start + i) % E;
+        if (contact(el)) {
+          const bool is_seg = el % 2 == 1;
+          if (rep == kNone || (is_seg && !rep_is_segment)) {
+            rep = is_seg ? sub.segment_point(sub.side_segment[b + el / 2]) : sub.corners[b + el / 2];
+            rep_is_segment = is_seg;
+          }
+        } else if (rep != kNone) {
+          sub.curve_edges.push_back({fp, rep});
+          sub.curve_anchor[rep] = 1;
+          if (rep_is_segment) sub.segment_used[rep - N] = 1;
+          ++connections;
+          rep = kNone;
+          rep_is_segment = false;
+        }
+      }
+    }
+    if (connections == 0) {
+      if (boundary_fallback != kNone) {
+        sub.curve_edges.push_back({fp, sub.segment_point(boundary_fallback)});
+        sub.segment_used[boundary_fallback] = 1;
+      } else {
+        ++sub.unconnected_faces;
+      }
+    }
+  }
+
+  // Points.
+  sub.point.resize(npoints);
+  sub.point_bt.resize(npoints);
+  sub.point_radius.resize(npoints);
+  for (Index n = 0; n < N; ++n) {
+    sub.point[n] = g.pos[n];
+    sub.point_bt[n] = burn.bt[n];
+    sub.point_radius[n] = g.radius[n];
+  }
+  for (Index s = 0; s < S; ++s) {
+    const Index p = sub.segment_point(s);
+    if (!sub.segment_used[s]) {
+      sub.point[p] = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+      sub.point_bt[p] = sub.point_radius[p] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    const auto ends = sub.segment_nodes(g, s);
+    dual_point(g, burn.bt, ends.data(), 2, sub.point[p], sub.point_bt[p], sub.point_radius[p]);
+  }
+  for (Index f = 0; f < F; ++f) {
+    const Index b = sub.face_begin[f], m = sub.face_begin[f + 1] - b;
+    const Index p = sub.face_point(f);
+    dual_point(g, burn.bt, &sub.corners[b], m, sub.point[p], sub.point_bt[p], sub.point_radius[p]);
+  }
+  sub.point_et.resize(npoints);
+  for (std::size_t p = 0; p < npoints; ++p)
+    sub.point_et[p] = std::isinf(sub.point_bt[p]) ? kInf : sub.point_bt[p] - sub.point_radius[p];
+  return sub;
+}
+
+void face_boundary_points(const Subdivision& sub, Index f, std::vector<Index>& out) {
+  out.clear();
+  for (Index k = sub.face_begin[f]; k < sub.face_begin[f + 1]; ++k) {
+    out.push_back(sub.corners[k]);
+    const Index s = sub.side_segment[k];
+    if (s != kNone && sub.segment_used[s]) out.push_back(sub.segment_point(s));
+  }
+}
+
+std::vector<double> curve_erosion_thickness(const Subdivision& sub, std::vector<double>* bt_c) {
+  // The 1D burn on C, over the points that C uses.
+  const std::size_t np = sub.num_points();
+  std::vector<Index> local(np, kNone), global;
+  for (const Segment& e : sub.curve_edges)
+    for (Index p : e)
+      if (local[p] == kNone) local[p] = static_cast<Index>(global.size()), global.push_back(p);
+  Graph1D c;
+  for (Index p : global) {
+    c.points.push_back(sub.point[p]);
+    c.ignite.push_back(sub.point_bt[p]);
+    c.anchored.push_back(sub.curve_anchor[p]);
+  }
+  for (const Segment& e : sub.curve_edges) c.edges.push_back({local[e[0]], local[e[1]]});
+  const std::vector<double> bt = burn_1d(c);
+  std::vector<double> et(np, std::numeric_limits<double>::quiet_NaN());
+  if (bt_c) bt_c->assign(np, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < global.size(); ++i) {
+    const Index p = global[i];
+    et[p] = std::isinf(bt[i]) || std::isinf(sub.point_bt[p]) ? kInf : bt[i] - sub.point_bt[p];
+    if (bt_c) (*bt_c)[p] = bt[i];
+  }
+  return et;
+}
+
+MedialCurves extract_medial_curves(const BurnGraph& g, const Subdivision& sub) {
+  std::vector<double> bt_c;
+  const std::vector<double> et_c = curve_erosion_thickness(sub, &bt_c);
+  MedialCurves out;
+  std::vector<Index> local(sub.num_points(), kNone);
+  auto vertex = [&](Index p) {
+    if (local[p] != kNone) return local[p];
+    local[p] = static_cast<Index>(out.points.size());
+    out.points.push_back(sub.point[p]);
+    out.radius.push_back(sub.point_radius[p]);
+    out.bt_m.push_back(sub.point_bt[p]);
+    out.bt_c.push_back(bt_c[p]);
+    out.et_c.push_back(et_c[p]);
+    out.source.push_back(p);
+    const int kind = p < sub.num_nodes ? (g.is_vertex(p) ? 0 : 1) : p < sub.num_nodes + sub.num_segments ? 2 : 3;
+    out.kind.push_back(kind);
+    return local[p];
+  };
+  for (const Segment& e : sub.curve_edges) out.edges.push_back({vertex(e[0]), vertex(e[1])});
+  std::vector<Index> ring;
+  for (Index f = 0; f < sub.num_faces(); ++f) {
+    if (!sub.face_residue[f]) continue;
+    face_boundary_points(sub, f, ring);
+    const Index centre = vertex(sub.face_point(f));
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      out.residue_faces.push_back({centre, vertex(ring[i]), vertex(ring[(i + 1) % ring.size()])});
+  }
+  return out;
+}
+
+}  // namespace medax::et

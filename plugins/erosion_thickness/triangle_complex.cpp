@@ -1,0 +1,197 @@
+#include "triangle_complex.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace medax::et {
+
+double TriangleComplex::max_bbox_side() const {
+  if (points.empty()) return 0.0;
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).maxCoeff();
+}
+
+TriangleComplex build_triangle_complex(std::vector<Vec3> points, std::vector<double> radii,
+                                       std::vector<Tri> triangles) {
+  TriangleComplex cx;
+  cx.points = std::move(points);
+  cx.radii = std::move(radii);
+  cx.triangles = std::move(triangles);
+  const std::size_t nv = cx.points.size(), nt = cx.triangles.size();
+  if (cx.radii.size() != nv) throw std::invalid_argument("build_triangle_complex: one radius per point");
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tri& f = cx.triangles[t];
+    for (int j = 0; j < 3; ++j)
+      if (f[j] >= nv) throw std::invalid_argument("build_triangle_complex: triangle " + std::to_string(t) +
+                                                  " has a vertex index out of range");
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
+      throw std::invalid_argument("build_triangle_complex: triangle " + std::to_string(t) +
+                                  " repeats a vertex; clean the complex first (`pure_complex`)");
+  }
+
+  // Unique edges: sort (key, triangle, side) records.
+  struct Rec {
+    std::uint64_t key;
+    Index t;
+    int j;
+  };
+  std::vector<Rec> recs;
+  recs.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int j = 0; j < 3; ++j) {
+      const Index a = cx.triangles[t][j], b = cx.triangles[t][(j + 1) % 3];
+      const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
+      recs.push_back({(lo << 32) | hi, static_cast<Index>(t), j});
+    }
+  std::sort(recs.begin(), recs.end(),
+            [](const Rec& x, const Rec& y) { return x.key < y.key || (x.key == y.key && x.t < y.t); });
+  cx.tri_edges.assign(nt, {kNone, kNone, kNone});
+  cx.tri_edge_slot.assign(nt, {0, 0, 0});
+  cx.edge_tri_begin.push_back(0);
+  for (std::size_t i = 0; i < recs.size();) {
+    std::size_t k = i;
+    const Index e = static_cast<Index>(cx.edges.size());
+    cx.edges.push_back({static_cast<Index>(recs[i].key >> 32), static_cast<Index>(recs[i].key & 0xffffffffu)});
+    for (; k < recs.size() && recs[k].key == recs[i].key; ++k) {
+      cx.tri_edges[recs[k].t][recs[k].j] = e;
+      cx.tri_edge_slot[recs[k].t][recs[k].j] = static_cast<Index>(k - i);
+      cx.edge_tris.push_back(recs[k].t);
+    }
+    cx.edge_tri_begin.push_back(static_cast<Index>(cx.edge_tris.size()));
+    i = k;
+  }
+
+  // Vertex -> triangles.
+  cx.vert_tri_begin.assign(nv + 1, 0);
+  for (const Tri& f : cx.triangles)
+    for (Index v : f) ++cx.vert_tri_begin[v + 1];
+  std::partial_sum(cx.vert_tri_begin.begin(), cx.vert_tri_begin.end(), cx.vert_tri_begin.begin());
+  cx.vert_tris.resize(3 * nt);
+  std::vector<Index> fill(cx.vert_tri_begin.begin(), cx.vert_tri_begin.end() - 1);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (Index v : cx.triangles[t]) cx.vert_tris[fill[v]++] = static_cast<Index>(t);
+  return cx;
+}
+
+namespace {
+
+struct SmallUnionFind {
+  std::vector<int> parent;
+  void reset(std::size_t n) {
+    parent.resize(n);
+    std::iota(parent.begin(), parent.end(), 0);
+  }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  bool unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    if (a > b) std::swap(a, b);
+    parent[b] = a;
+    return true;
+  }
+};
+
+}  // namespace
+
+VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
+  const std::size_t nv = cx.num_vertices(), nt = cx.num_triangles();
+  VertexSectors vs;
+  vs.corner_sector.assign(3 * nt, 0);
+  vs.sector_begin.assign(nv + 1, 0);
+  vs.h_nodes.assign(nv, 0);
+  vs.boundary.assign(nv, 0);
+
+  struct Link {
+    Index edge;
+    int local;  // local triangle index
+  };
+  std::vector<Link> links;
+  std::vector<int> sector_of_local, root_to_sector;
+  std::vector<int> ends_count;
+  std::vector<std::array<int, 2>> ends;
+  std::vector<Index> h_edge_ids;
+  SmallUnionFind uf, huf;
+
+  for (std::size_t v = 0; v < nv; ++v) {
+    const Index begin = cx.vert_tri_begin[v], deg = cx.vert_tri_begin[v + 1] - begin;
+    vs.sector_begin[v + 1] = vs.sector_begin[v];
+    if (deg == 0) {
+      vs.boundary[v] = 1;  // not on any triangle: a point is its own boundary
+      continue;
+    }
+    links.clear();
+    for (Index i = 0; i < deg; ++i) {
+      const Index t = cx.vert_tris[begin + i];
+      const Tri& f = cx.triangles[t];
+      const int j = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+      links.push_back({cx.tri_edges[t][j], static_cast<int>(i)});
+      links.push_back({cx.tri_edges[t][(j + 2) % 3], static_cast<int>(i)});
+    }
+    std::sort(links.begin(), links.end(),
+              [](const Link& a, const Link& b) { return a.edge < b.edge || (a.edge == b.edge && a.local < b.local); });
+    uf.reset(deg);
+    for (std::size_t i = 0; i + 1 < links.size(); ++i)
+      if (links[i].edge == links[i + 1].edge && cx.edge_degree(links[i].edge) == 2) uf.unite(links[i].local, links[i + 1].local);
+    // Sector ids in order of their first triangle.
+    root_to_sector.assign(deg, -1);
+    sector_of_local.assign(deg, -1);
+    int ns = 0;
+    for (Index i = 0; i < deg; ++i) {
+      const int r = uf.find(static_cast<int>(i));
+      if (root_to_sector[r] < 0) root_to_sector[r] = ns++;
+      sector_of_local[i] = root_to_sector[r];
+    }
+    if (ns > 0xfffe)
+      throw std::runtime_error("erosion thickness: vertex " + std::to_string(v) + " has too many sectors");
+    // H nodes: link nodes (edges) of degree != 2, in edge order.
+    h_edge_ids.clear();
+    ends_count.assign(ns, 0);
+    ends.assign(ns, {-1, -1});
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      if (cx.edge_degree(links[i].edge) == 2) continue;
+      if (h_edge_ids.empty() || h_edge_ids.back() != links[i].edge) h_edge_ids.push_back(links[i].edge);
+      const int node = static_cast<int>(h_edge_ids.size()) - 1;
+      const int s = sector_of_local[links[i].local];
+      if (ends_count[s] < 2) ends[s][ends_count[s]] = node;
+      ++ends_count[s];
+    }
+    int nh = static_cast<int>(h_edge_ids.size());
+    for (int s = 0; s < ns; ++s) {
+      if (ends_count[s] == 0) ends[s] = {nh, nh}, ++nh;  // closed chain: a self-loop on its own node
+      else if (ends_count[s] == 1) ends[s][1] = ends[s][0];  // cannot happen for chains; be safe
+    }
+    if (nh > 0xfffe)
+      throw std::runtime_error("erosion thickness: vertex " + std::to_string(v) + " has too many link nodes");
+    vs.h_nodes[v] = static_cast<std::uint16_t>(nh);
+    // ∂G: H_v is a forest.
+    huf.reset(nh);
+    bool forest = true;
+    for (int s = 0; s < ns && forest; ++s) forest = huf.unite(ends[s][0], ends[s][1]);
+    vs.boundary[v] = forest ? 1 : 0;
+
+    for (Index i = 0; i < deg; ++i) {
+      const Index t = cx.vert_tris[begin + i];
+      const Tri& f = cx.triangles[t];
+      const int j = f[0] == v ? 0 : f[1] == v ? 1 : 2;
+      vs.corner_sector[3 * t + j] = static_cast<std::uint16_t>(sector_of_local[i]);
+    }
+    for (int s = 0; s < ns; ++s) {
+      vs.end_a.push_back(static_cast<std::uint16_t>(ends[s][0]));
+      vs.end_b.push_back(static_cast<std::uint16_t>(ends[s][1]));
+    }
+    vs.sector_begin[v + 1] = vs.sector_begin[v] + static_cast<Index>(ns);
+  }
+  return vs;
+}
+
+}  // namespace medax::et

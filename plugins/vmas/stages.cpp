@@ -3,6 +3,9 @@
 #include "edits.hpp"
 
 #include <fmt/format.h>
+#include <tbb/task_arena.h>
+
+#include <ostream>
 
 #include <algorithm>
 #include <chrono>
@@ -66,7 +69,10 @@ StageInfo VmasStage::describe() {
            P::choice("edit_frame", "input", {"input", "working"},
                      "Frame of the edit points: the input file's coordinates, or the shape's current frame"),
            P::integer("relax_iterations", 10, "Iterations without splits after edits applied at the end")
-               .at_least(0)}};
+               .at_least(0),
+           P::boolean("trace", false,
+                      "Write <id>_trace.csv to the run folder: per iteration the sphere count, splits, culls, "
+                      "total and largest cluster error and the energy")}};
 }
 
 VmasOptions VmasStage::solver_options(const ParamSet& p) {
@@ -152,8 +158,11 @@ MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {
   apply_due(0, false);
   const bool count_mode = options.stop_mode == StopMode::Count;
   const double threshold = options.error_threshold * input->scale * input->scale;
+  std::vector<IterationReport> trace;
+  const bool tracing = params().boolean("trace");
   const IterationReport rep = solver.run([&](const IterationReport& r) {
     ctx.check_cancelled();
+    if (tracing) trace.push_back(r);
     const double fraction = count_mode ? static_cast<double>(r.spheres) / static_cast<double>(options.target_spheres)
                                        : (r.max_error > 0 ? threshold / r.max_error : 1.0);
     ctx.progress(std::min(1.0, fraction), fmt::format("{} spheres", r.spheres));
@@ -168,16 +177,31 @@ MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {
   if (last_edit_at == solver.iterations())
     for (long long i = 0; i < params().integer("relax_iterations"); ++i) {
       ctx.check_cancelled();
-      solver.relax();
+      const IterationReport r = solver.relax();
+      if (tracing) trace.push_back(r);
     }
   solver.finish();
+  if (tracing) {
+    const double s2 = input->scale * input->scale;
+    ctx.write_output((id().empty() ? std::string("vmas") : id()) + "_trace.csv", [&](std::ostream& out) {
+      out << "iteration,spheres,splits,culled,converged,total_error,max_error,energy_partition,energy,"
+             "total_error_unit_box,max_error_unit_box\n";
+      for (const IterationReport& r : trace)
+        out << fmt::format("{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", r.iteration, r.spheres,
+                           r.splits, r.culled, r.converged ? 1 : 0, r.total_error, r.max_error, r.energy_partition,
+                           r.energy, r.total_error / s2, r.max_error / s2);
+    });
+  }
   const auto t2 = std::chrono::steady_clock::now();
   const IterationReport& last = solver.last_report();
+  const PhaseTimes& ph = solver.times();
   ctx.info(fmt::format("vmas: {} spheres after {} iterations; E_tot {:.4g}, max E(C) {:.4g} ({:.3g}·scale²); "
-                       "precompute {:.3f} s, optimisation {:.3f} s",
+                       "{} threads: precompute {:.3f} s, optimisation {:.3f} s (partition {:.3f}, update {:.3f}, "
+                       "correction {:.3f}, errors {:.3f}, splits {:.3f}, edits {:.3f})",
                        solver.size(), solver.iterations(), last.total_error, last.max_error,
-                       last.max_error / (input->scale * input->scale),
-                       std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count()));
+                       last.max_error / (input->scale * input->scale), tbb::this_task_arena::max_concurrency(),
+                       std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(),
+                       ph.partition, ph.update, ph.correction, ph.errors, ph.splits, ph.edits));
   return solver.complex(false);
 }
 

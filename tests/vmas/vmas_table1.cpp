@@ -15,7 +15,9 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -55,6 +57,16 @@ double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
   evaluation::ReconstructionOptions o;  // VMAS protocol: vertices + envelope grid of min side / 150
   std::mt19937_64 rng(1);
   const auto r = evaluation::measure_reconstruction(shape, mc, o, rng);
+  std::fprintf(stderr, "  surface->envelope %.3f%%, envelope->surface %.3f%% (%zu envelope points)\n",
+               100.0 * r.surface_to_envelope_max / r.diagonal, 100.0 * r.envelope_to_surface_max / r.diagonal,
+               r.envelope.size());
+  if (std::getenv("VMAS_TABLE1_WORST")) {  // where the surface is farthest from the envelope
+    const services::Envelope env(mc);
+    const auto d = env.signed_distances(shape.mesh.vertices);
+    const std::size_t worst = static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
+    std::fprintf(stderr, "  worst surface vertex %zu at (%.3f %.3f %.3f): %.3f%%\n", worst, shape.mesh.vertices[worst].x(),
+                 shape.mesh.vertices[worst].y(), shape.mesh.vertices[worst].z(), 100.0 * d[worst] / r.diagonal);
+  }
   return 100.0 * r.hausdorff() / r.diagonal;
 #else
   (void)shape, (void)mc;

@@ -1,0 +1,47 @@
+#pragma once
+// Poisson-disk (blue-noise) samples of a triangle mesh, with outward normals and areas.
+//
+// Both methods start from dense uniform area-weighted candidates (sample_uniform), so they are
+// deterministic for a given generator state:
+// - by count: weighted sample elimination (Yuksel 2015, "Sample Elimination for Generating
+//   Poisson Disk Sample Sets", Eurographics), which returns exactly `count` samples;
+// - by radius: dart throwing over the candidates in their random order, which returns a
+//   (nearly maximal) set in which no two samples are closer than `radius`.
+// Distances are Euclidean, but two samples only repel each other when their normals differ by
+// less than `normal_angle_deg`: the two sides of a plate thinner than the radius are sampled
+// independently instead of thinning each other out.
+#include <medax/surface.hpp>
+
+#include <random>
+
+namespace medax::services {
+
+struct PoissonDiskOptions {
+  /// Uniform candidates drawn per output sample (by count) or per sample of a hexagonal
+  /// packing at `radius` (by radius). Yuksel uses 5 for surfaces.
+  double oversampling = 5.0;
+  /// Samples whose normals differ by this angle or more never repel each other (degrees).
+  double normal_angle_deg = 120.0;
+};
+
+/// Exactly `count` samples by weighted sample elimination. Each sample's area is the share of
+/// candidates closest to it (with agreeing normals) times the candidates' area, so the areas
+/// sum to the surface area. Throws std::invalid_argument for a zero-area mesh or count 0.
+OrientedSamples sample_poisson_count(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng,
+                                     const PoissonDiskOptions& options = {});
+
+/// Samples no two of which (with agreeing normals) are closer than `radius`, by dart throwing
+/// over dense candidates. Areas as above. Throws std::invalid_argument for a zero-area mesh, a
+/// radius ≤ 0, or a radius so small that over 50 million candidates would be needed.
+OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
+                                      const PoissonDiskOptions& options = {});
+
+/// The spacing of an ideal hexagonal packing of `count` points over `area`, 2·sqrt(area /
+/// (2·√3·count)): the largest minimum distance `count` samples can have (2·r_max in Yuksel).
+double poisson_packing_distance(double area, std::size_t count);
+
+/// The smallest distance between two samples whose normals differ by less than
+/// `normal_angle_deg` (infinity when there is no such pair).
+double min_sample_distance(const OrientedSamples& samples, double normal_angle_deg = 120.0);
+
+}  // namespace medax::services

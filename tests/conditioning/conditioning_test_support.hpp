@@ -1,0 +1,165 @@
+#pragma once
+// Helpers for the conditioning tests: the shared real meshes and their manifest facts, small
+// hand-made broken meshes, and a registry holding the conditioning plugin.
+#include <test_paths.hpp>
+
+#include <medax/io.hpp>
+#include <medax/kernel/registry.hpp>
+#include <medax/stage.hpp>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace medax::test {
+
+/// The good meshes (top level of ../shared/data/meshes), sorted by name.
+inline std::vector<std::filesystem::path> good_meshes() {
+  std::vector<std::filesystem::path> out;
+  for (const auto& entry : std::filesystem::directory_iterator(shared_meshes_dir())) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl"))
+      out.push_back(entry.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// The deliberately broken meshes in bad/.
+inline std::vector<std::filesystem::path> bad_meshes() {
+  std::vector<std::filesystem::path> out;
+  for (const auto& entry : std::filesystem::directory_iterator(shared_meshes_dir() / "bad"))
+    if (entry.is_regular_file()) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// meshcheck.jsonl: the "meshcheck" object of every file, by its path relative to the folder.
+inline const std::map<std::string, nlohmann::json>& manifest_checks() {
+  static const std::map<std::string, nlohmann::json> checks = [] {
+    std::map<std::string, nlohmann::json> out;
+    std::ifstream in(shared_meshes_dir() / "meshcheck.jsonl");
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      const auto j = nlohmann::json::parse(line);
+      out[j.at("file").get<std::string>()] = j.at("meshcheck");
+    }
+    return out;
+  }();
+  return checks;
+}
+
+/// A mesh's file name relative to the shared folder ("cow.off" -> "bad/cow.off" when in bad/).
+inline std::string manifest_key(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  return path.parent_path().filename() == "bad" ? "bad/" + name : name;
+}
+
+/// A regular tetrahedron-like solid: 4 vertices, 4 outward faces.
+inline SurfaceMesh tetrahedron(const Vec3& offset = Vec3::Zero(), double scale = 1.0) {
+  SurfaceMesh m;
+  m.vertices = {offset + scale * Vec3(0, 0, 0), offset + scale * Vec3(1, 0, 0), offset + scale * Vec3(0, 1, 0),
+                offset + scale * Vec3(0, 0, 1)};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return m;
+}
+
+/// Both meshes in one (vertex indices of `b` shifted).
+inline SurfaceMesh merged(const SurfaceMesh& a, const SurfaceMesh& b) {
+  SurfaceMesh m = a;
+  const auto shift = static_cast<Index>(a.vertices.size());
+  m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (Tri f : b.faces) m.faces.push_back({f[0] + shift, f[1] + shift, f[2] + shift});
+  return m;
+}
+
+inline SurfaceMesh reversed(SurfaceMesh m) {
+  for (Tri& f : m.faces) std::swap(f[1], f[2]);
+  return m;
+}
+
+/// Every face gets its own three vertices (a polygon soup with all vertices duplicated).
+inline SurfaceMesh exploded(const SurfaceMesh& in) {
+  SurfaceMesh m;
+  for (const Tri& f : in.faces) {
+    const auto base = static_cast<Index>(m.vertices.size());
+    for (Index v : f) m.vertices.push_back(in.vertices[v]);
+    m.faces.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+/// The same face up to a rotation of its corners (same orientation).
+inline bool same_oriented_face(const Tri& a, const Tri& b) {
+  for (int r = 0; r < 3; ++r)
+    if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
+  return false;
+}
+
+inline double bbox_diag(const SurfaceMesh& m) { return bbox_diagonal(m.vertices); }
+
+/// A registry holding only the conditioning plugin (shared; tests must not modify it).
+inline const Registry& conditioning_registry() {
+  static Registry* registry = [] {
+    auto* r = new Registry();
+    r->load_file(MEDAX_CONDITIONING_PLUGIN);
+    return r;
+  }();
+  return *registry;
+}
+
+/// A configured stage of the conditioning plugin with its defaults and `settings` applied.
+inline std::unique_ptr<Stage> make_stage(const std::string& name, const std::map<std::string, ParamValue>& settings = {}) {
+  const Registry& registry = conditioning_registry();
+  const RegisteredStage* entry = registry.find(name);
+  REQUIRE(entry != nullptr);
+  ParamSet params = default_params(entry->info().params);
+  for (const auto& [key, value] : settings) {
+    REQUIRE(params.has(key));
+    params.set(key, value);
+  }
+  auto stage = registry.create(name);
+  stage->configure(params);
+  stage->set_id(name);
+  return stage;
+}
+
+/// A context that keeps what the stage logs.
+class RecordingContext : public BasicContext {
+ public:
+  explicit RecordingContext(std::uint64_t seed = 0) : BasicContext(seed) {}
+  void info(std::string_view message) override { infos.emplace_back(message); }
+  void warn(std::string_view message) override { warnings.emplace_back(message); }
+  bool logged(const std::string& text) const {
+    for (const auto* list : {&infos, &warnings})
+      for (const auto& line : *list)
+        if (line.find(text) != std::string::npos) return true;
+    return false;
+  }
+  std::vector<std::string> infos, warnings;
+};
+
+/// Runs `stage` (prepare, then run) on a scene holding `shape`; returns the scene.
+inline Scene run_stage(Stage& stage, Shape shape, Context& ctx) {
+  Scene scene;
+  scene.shape = std::move(shape);
+  stage.prepare(scene);
+  stage.run(scene, ctx);
+  return scene;
+}
+
+inline Shape shape_of(const std::filesystem::path& path) {
+  Shape s;
+  s.mesh = read_mesh(path);
+  s.source = path.string();
+  return s;
+}
+
+}  // namespace medax::test

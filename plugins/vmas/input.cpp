@@ -196,6 +196,9 @@ void VmasInput::finish_setup() {
       return;
     }
     vertex_balls[v] = shrinking_ball(points[v], normals[v]);
+    // A ball that never shrank found no second contact: not a medial ball (never a seed).
+    if (!(vertex_balls[v].radius < 0.999 * options.sb_initial_radius * diagonal) || !vertex_balls[v].centre.allFinite())
+      vertex_balls[v] = {points[v], 0.0};
   });
 }
 

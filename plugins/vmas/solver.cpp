@@ -127,7 +127,10 @@ IterationReport VmasSolver::step(bool allow_split) {
   const bool count_mode = options_.stop_mode == StopMode::Count;
   const bool target_met = count_mode ? spheres_.size() >= options_.target_spheres
                                      : rep.max_error < options_.error_threshold * s2;
-  rep.stop = (rep.converged && target_met) || iteration_ >= options_.max_iterations;
+  if (spheres_.size() > best_count_) best_count_ = spheres_.size(), last_progress_ = iteration_;
+  if (rep.total_error < best_total_ - options_.converge_eps * s2) best_total_ = rep.total_error, last_progress_ = iteration_;
+  rep.stalled = options_.stall_iterations > 0 && iteration_ - last_progress_ >= options_.stall_iterations;
+  rep.stop = (rep.converged && target_met) || rep.stalled || iteration_ >= options_.max_iterations;
 
   const int period = std::max(1, options_.split_period);
   if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
@@ -186,6 +189,10 @@ void VmasSolver::refresh_after_edit() {
   double total = 0;
   for (const ClusterStats& st : stats_) total += st.error;
   previous_total_ = total;
+  // An edit restarts the stall test from the edited state.
+  best_total_ = std::numeric_limits<double>::infinity();
+  best_count_ = spheres_.size();
+  last_progress_ = iteration_;
 }
 
 std::size_t VmasSolver::index_of(SphereId id) const {

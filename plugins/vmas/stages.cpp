@@ -62,6 +62,10 @@ StageInfo VmasStage::describe() {
            P::integer("sb_max_iters", 30, "Shrinking-ball iterations").at_least(1),
            P::real("sb_angle_deg", 20.0, "Shrinking-ball denoising angle").range(0, 90).in_unit("degree"),
            P::integer("max_iterations", 1000, "Iteration cap").at_least(1),
+           P::integer("stall_iterations", 100,
+                      "Stop when neither the sphere count nor the total error has improved for this many "
+                      "iterations (0: never)")
+               .at_least(0),
            P::text("edits", "",
                    "Scripted edits, one per line or ';': `split|remove|add X Y Z [after K|end]` (split or "
                    "remove the sphere nearest to the point, add the shrinking ball of the nearest surface "
@@ -96,6 +100,7 @@ VmasOptions VmasStage::solver_options(const ParamSet& p) {
                  : c == "end" ? Correction::End
                               : Correction::Off;
   o.max_iterations = static_cast<int>(p.integer("max_iterations"));
+  o.stall_iterations = static_cast<int>(p.integer("stall_iterations"));
   return o;
 }
 
@@ -169,10 +174,16 @@ MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {
     apply_due(r.iteration, false);
     return true;
   });
-  if (!rep.stop)
-    ctx.warn("vmas: stopped before the stop criterion");
-  else if (solver.iterations() >= options.max_iterations && !(rep.converged))
-    ctx.warn(fmt::format("vmas: reached max_iterations ({}) before convergence", options.max_iterations));
+  const bool target_met = count_mode ? solver.size() >= options.target_spheres : rep.max_error < threshold;
+  if (rep.stalled)
+    ctx.warn(fmt::format("vmas: no progress for {} iterations, stopping with {} spheres{}", options.stall_iterations,
+                         solver.size(),
+                         target_met ? " (the spheres oscillate; see the paper's §5)"
+                                    : " before the target: spheres added by splits keep losing their clusters (fewer "
+                                      "than min_cluster_size vertices). The mesh is too coarse for this many spheres "
+                                      "(the authors recommend |M| <= |V|/100): refine or resample it"));
+  else if (!(rep.converged && target_met))
+    ctx.warn(fmt::format("vmas: reached max_iterations ({}) before the stop criterion", options.max_iterations));
   apply_due(solver.iterations(), true);
   if (last_edit_at == solver.iterations())
     for (long long i = 0; i < params().integer("relax_iterations"); ++i) {

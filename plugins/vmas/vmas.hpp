@@ -57,6 +57,10 @@ struct VmasOptions {
   double gn_tolerance = 1e-6;        ///< × scale
   Correction correction = Correction::Always;
   int max_iterations = 1000;
+  /// Stop when for this many iterations the sphere count has not grown past its maximum and
+  /// E_tot has not reached a new minimum (a target the tessellation cannot hold, or spheres
+  /// oscillating between two positions, paper §5); 0 = never.
+  int stall_iterations = 100;
 };
 
 using SphereId = std::uint64_t;
@@ -82,7 +86,8 @@ struct IterationReport {
   double total_error = 0;       ///< E_tot = Σ_i E(C_i)
   double max_error = 0;
   bool converged = false;       ///< |ΔE_tot| < converge_eps·scale²
-  bool stop = false;            ///< stop criterion met, or max_iterations reached
+  bool stalled = false;         ///< no progress for stall_iterations iterations
+  bool stop = false;            ///< stop criterion met, stalled, or max_iterations reached
 };
 
 /// Wall time spent in each phase since the solver was made (seconds).
@@ -155,6 +160,9 @@ class VmasSolver {
   std::vector<ClusterStats> stats_;   ///< same
   int iteration_ = 0;
   double previous_total_ = std::numeric_limits<double>::infinity();
+  double best_total_ = std::numeric_limits<double>::infinity();  ///< for the stall test
+  std::size_t best_count_ = 0;
+  int last_progress_ = 0;
   IterationReport last_;
   PhaseTimes times_;
 };

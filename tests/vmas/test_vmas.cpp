@@ -307,6 +307,16 @@ TEST_CASE("vmas count mode stops at the target") {
   }
 }
 
+TEST_CASE("vmas stops when a too-coarse mesh cannot hold the target") {
+  // 162 vertices cannot give 60 clusters of ≥ 4 vertices each for long: new spheres keep being
+  // culled, so the run stalls and stops long before max_iterations.
+  const VmasSolver solver = solve(testing::make_sphere(1.0, 2), count_options(60));
+  CHECK(solver.last_report().stalled);
+  CHECK(solver.last_report().stop);
+  CHECK(solver.size() < 60);
+  CHECK(solver.iterations() < 400);
+}
+
 TEST_CASE("vmas error mode stops below the threshold") {
   const SurfaceMesh mesh = make_blob();
   std::size_t previous = 0;

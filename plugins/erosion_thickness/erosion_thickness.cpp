@@ -81,7 +81,7 @@ void store_medial_curves(const MedialCurves& c, MedialComplex& medial) {
   out.centres = c.points;
   out.radii = c.radius;
   out.edges = c.edges;
-  out.faces = c.residue_faces;
+  out.faces = c.faces;
   out.close_edges();
   auto& vf = out.vertex_props.fields;
   vf.add("bt_m", c.points.size()) = c.bt_m;

@@ -76,9 +76,6 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
         if (burn.prime_tri[s] != kNone) arcs[fill[burn.prime_tri[s]]++] = {burn.prime_node[s], n};
   }
 
-  // Residue: unburned nodes; triangles whose nodes are all unburned.
-  std::vector<char> tri_residue(nt, 0);
-  sub.node_in_residue.assign(N, 0);
 
   std::vector<Index> poly;             // polygon corners (node ids)
   std::vector<Index> poly_seg;         // side i (poly i -> i+1): segment id
@@ -86,6 +83,11 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
   std::vector<std::array<Index, 2>> chords;
   std::vector<std::vector<Index>> nbrs;
   std::vector<std::pair<Index, Index>> directed;  // visited directed edges (a, b)
+  std::vector<Index> directed_face;                // the face each one bounds
+  struct Bridge {
+    Index f1, f2, node;
+  };
+  std::vector<Bridge> chord_bridges;  // faces on the two sides of a chord, and its first end
   std::vector<Index> face;
   sub.tri_face_begin.assign(nt + 1, 0);
   sub.face_begin.push_back(0);
@@ -106,13 +108,9 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
       }
     }
     const Index P = static_cast<Index>(poly.size());
-    bool residue = true;
+    bool residue = true;  // a triangle of a closed surface that never burns
     for (Index x : poly) residue = residue && !std::isfinite(burn.bt[x]);
-    tri_residue[t] = residue;
-    if (residue) {
-      ++sub.residue_triangles;
-      for (Index x : poly) sub.node_in_residue[x] = 1;
-    }
+    sub.residue_triangles += residue;
     auto poly_index = [&](Index node) -> Index {
       const Tri& c = cx.triangles[t];
       for (int j = 0; j < 3; ++j)
@@ -152,6 +150,7 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
     for (Index i = 0; i < P; ++i) nbrs[i].push_back((i + 1) % P), nbrs[(i + 1) % P].push_back(i);
     for (const auto& c : chords) nbrs[c[0]].push_back(c[1]), nbrs[c[1]].push_back(c[0]);
     directed.clear();
+    directed_face.clear();
     auto visited = [&](Index a, Index b) {
       return std::find(directed.begin(), directed.end(), std::pair<Index, Index>{a, b}) != directed.end();
     };
@@ -160,6 +159,7 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
       Index a = a0, b = b0;
       do {
         directed.push_back({a, b});
+        directed_face.push_back(static_cast<Index>(sub.face_tri.size()));
         face.push_back(a);
         const Index oa = (a + P - b) % P;
         Index best = kNone, best_off = 0;
@@ -192,93 +192,114 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
       if (!visited(c[0], c[1])) walk(c[0], c[1]);
       if (!visited(c[1], c[0])) walk(c[1], c[0]);
     }
+    auto face_of = [&](Index a, Index b) {
+      const auto it = std::find(directed.begin(), directed.end(), std::pair<Index, Index>{a, b});
+      return directed_face[it - directed.begin()];
+    };
+    for (const auto& c : chords) chord_bridges.push_back({face_of(c[0], c[1]), face_of(c[1], c[0]), poly[c[0]]});
   }
   sub.tri_face_begin[nt] = static_cast<Index>(sub.face_tri.size());
   const Index F = sub.num_faces();
 
-  // Residue segments: on an edge of a residue triangle.
-  std::vector<char> edge_residue(ne, 0);
-  for (Index t = 0; t < nt; ++t)
-    if (tri_residue[t])
-      for (int j = 0; j < 3; ++j) edge_residue[cx.tri_edges[t][j]] = 1;
-  auto segment_residue = [&](Index s) {
-    const Index e = static_cast<Index>(std::upper_bound(sub.segment_begin.begin(), sub.segment_begin.end(), s) -
-                                       sub.segment_begin.begin()) - 1;
-    return edge_residue[e] != 0;
-  };
+  // The medial curves as the order complex of the cells that survive the cut (see the header):
+  // faces, segments and unburned nodes, related by "lies on the boundary of", minus the
+  // face-segment relations cut by a covering edge-arc.
   auto segment_edge = [&](Index s) {
     return static_cast<Index>(std::upper_bound(sub.segment_begin.begin(), sub.segment_begin.end(), s) -
                               sub.segment_begin.begin()) - 1;
   };
-
-  // Curve edges.
+  auto unburned = [&](Index node) { return !std::isfinite(burn.bt[node]); };
   sub.segment_used.assign(S, 0);
   const std::size_t npoints = std::size_t(N) + S + F;
-  sub.curve_anchor.assign(npoints, 0);
+  std::vector<Index> linked;  // segments joined to a face, for the segment-node edges
   for (Index f = 0; f < F; ++f) {
-    if (sub.face_residue[f]) continue;
     const Index b = sub.face_begin[f], m = sub.face_begin[f + 1] - b;
     const Index fp = sub.face_point(f);
     std::size_t connections = 0;
     Index boundary_fallback = kNone;
-    // Contact elements with the residue: element 2k = corner k, 2k+1 = side k.
-    auto contact = [&](Index el) -> bool {
-      const Index k = el / 2;
-      if (el % 2 == 0) return sub.node_in_residue[sub.corners[b + k]] != 0;
-      const Index s = sub.side_segment[b + k];
-      return s != kNone && !sub.side_covered[b + k] && segment_residue(s);
-    };
-    const Index E = 2 * m;
-    bool any_contact = false, all_contact = true;
-    for (Index el = 0; el < E; ++el) {
-      const bool c = contact(el);
-      any_contact = any_contact || c;
-      all_contact = all_contact && c;
-    }
     for (Index k = 0; k < m; ++k) {
       const Index s = sub.side_segment[b + k];
       if (s == kNone || sub.side_covered[b + k]) continue;
-      if (segment_residue(s)) continue;  // handled by the contact runs
-      if (g.cx->edge_degree(segment_edge(s)) == 1) {
-        if (boundary_fallback == kNone) boundary_fallback = s;
+      const Index p0 = sub.corners[b + k], p1 = sub.corners[b + (k + 1) % m];
+      const bool open_end = unburned(p0) || unburned(p1);
+      if (g.cx->edge_degree(segment_edge(s)) == 1 && !open_end) {
+        if (boundary_fallback == kNone) boundary_fallback = s;  // a leaf: skipped unless needed
         continue;
       }
       sub.curve_edges.push_back({fp, sub.segment_point(s)});
+      if (!sub.segment_used[s]) linked.push_back(s);
       sub.segment_used[s] = 1;
       ++connections;
+      for (Index p : {p0, p1})
+        if (unburned(p)) sub.curve_triangles.push_back({fp, sub.segment_point(s), p});
     }
-    if (any_contact && !all_contact) {
-      // Start right after a non-contact element, then take one representative per run.
-      Index start = 0;
-      while (contact(start)) ++start;
-      Index rep = kNone;
-      bool rep_is_segment = false;
-      for (Index i = 1; i <= E; ++i) {
-        const Index el = (start + i) % E;
-        if (contact(el)) {
-          const bool is_seg = el % 2 == 1;
-          if (rep == kNone || (is_seg && !rep_is_segment)) {
-            rep = is_seg ? sub.segment_point(sub.side_segment[b + el / 2]) : sub.corners[b + el / 2];
-            rep_is_segment = is_seg;
-          }
-        } else if (rep != kNone) {
-          sub.curve_edges.push_back({fp, rep});
-          sub.curve_anchor[rep] = 1;
-          if (rep_is_segment) sub.segment_used[rep - N] = 1;
-          ++connections;
-          rep = kNone;
-          rep_is_segment = false;
-        }
+    for (Index k = 0; k < m; ++k)
+      if (unburned(sub.corners[b + k])) {
+        sub.curve_edges.push_back({fp, sub.corners[b + k]});
+        ++connections;
       }
-    }
     if (connections == 0) {
       if (boundary_fallback != kNone) {
         sub.curve_edges.push_back({fp, sub.segment_point(boundary_fallback)});
+        if (!sub.segment_used[boundary_fallback]) linked.push_back(boundary_fallback);
         sub.segment_used[boundary_fallback] = 1;
       } else {
         ++sub.unconnected_faces;
       }
     }
+  }
+  for (Index s : linked) {
+    const auto ends = sub.segment_nodes(g, s);
+    for (Index p : ends)
+      if (unburned(p)) sub.curve_edges.push_back({sub.segment_point(s), p});
+  }
+
+  // Bridges. The cut can split off a piece that the rest of M reaches only across a burn arc or
+  // through a node: an arc from a ∂M node to a node that is on ∂M but also on a seam (so not on
+  // ∂G) cuts off a corner bounded by ∂M alone, and a vertex whose link is disconnected (two
+  // sheets touching at a point) joins sheets only through itself. Such a piece is an extra
+  // component of C. Join the components again, without closing any cycle: across a chord
+  // (face - chord end - face), then through shared nodes (face - node - face), each only when
+  // its two faces are in different components.
+  {
+    std::vector<Index> uf(npoints);
+    std::iota(uf.begin(), uf.end(), Index(0));
+    auto find = [&](Index x) {
+      while (uf[x] != x) x = uf[x] = uf[uf[x]];
+      return x;
+    };
+    auto unite = [&](Index a, Index b) {
+      a = find(a);
+      b = find(b);
+      if (a != b) uf[std::max(a, b)] = std::min(a, b);
+    };
+    std::vector<char> in_c(npoints, 0);
+    for (const Segment& e : sub.curve_edges) unite(e[0], e[1]), in_c[e[0]] = in_c[e[1]] = 1;
+    for (const Tri& t : sub.curve_triangles) unite(t[0], t[1]), unite(t[1], t[2]);
+    for (Index f = 0; f < F; ++f) in_c[sub.face_point(f)] = 1;
+    auto bridge = [&](Index f1, Index f2, Index node) {
+      const Index a = sub.face_point(f1), b = sub.face_point(f2);
+      if (find(a) == find(b)) return;
+      if (!in_c[node] || (find(node) != find(a) && find(node) != find(b))) {
+        sub.curve_edges.push_back({a, node});
+        sub.curve_edges.push_back({node, b});
+      } else {
+        sub.curve_edges.push_back(find(node) == find(a) ? Segment{node, b} : Segment{a, node});
+      }
+      in_c[node] = 1;
+      unite(a, node);
+      unite(node, b);
+      ++sub.bridges;
+    };
+    for (const Bridge& br : chord_bridges) bridge(br.f1, br.f2, br.node);
+    // Faces around each node, in face order.
+    std::vector<Index> first_face(N, kNone);
+    for (Index f = 0; f < F; ++f)
+      for (Index k = sub.face_begin[f]; k < sub.face_begin[f + 1]; ++k) {
+        const Index p = sub.corners[k];
+        if (first_face[p] == kNone) first_face[p] = f;
+        else bridge(first_face[p], f, p);
+      }
   }
 
   // Points.
@@ -321,6 +342,7 @@ void face_boundary_points(const Subdivision& sub, Index f, std::vector<Index>& o
 }
 
 std::vector<double> curve_erosion_thickness(const Subdivision& sub, std::vector<double>* bt_c) {
+  // Unburned nodes (closed surfaces) never burn: they anchor what hangs off them.
   // The 1D burn on C, over the points that C uses.
   const std::size_t np = sub.num_points();
   std::vector<Index> local(np, kNone), global;
@@ -331,7 +353,7 @@ std::vector<double> curve_erosion_thickness(const Subdivision& sub, std::vector<
   for (Index p : global) {
     c.points.push_back(sub.point[p]);
     c.ignite.push_back(sub.point_bt[p]);
-    c.anchored.push_back(sub.curve_anchor[p]);
+    c.anchored.push_back(p < sub.num_nodes && std::isinf(sub.point_bt[p]));
   }
   for (const Segment& e : sub.curve_edges) c.edges.push_back({local[e[0]], local[e[1]]});
   const std::vector<double> bt = burn_1d(c);
@@ -364,14 +386,10 @@ MedialCurves extract_medial_curves(const BurnGraph& g, const Subdivision& sub) {
     return local[p];
   };
   for (const Segment& e : sub.curve_edges) out.edges.push_back({vertex(e[0]), vertex(e[1])});
-  std::vector<Index> ring;
-  for (Index f = 0; f < sub.num_faces(); ++f) {
-    if (!sub.face_residue[f]) continue;
-    face_boundary_points(sub, f, ring);
-    const Index centre = vertex(sub.face_point(f));
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      out.residue_faces.push_back({centre, vertex(ring[i]), vertex(ring[(i + 1) % ring.size()])});
-  }
+  for (const Tri& t : sub.curve_triangles) out.faces.push_back({vertex(t[0]), vertex(t[1]), vertex(t[2])});
+  // Off the 1D part (closed surfaces), ET_C is infinite like ET.
+  for (std::size_t i = 0; i < out.et_c.size(); ++i)
+    if (std::isnan(out.et_c[i]) && std::isinf(out.bt_m[i])) out.et_c[i] = kInf;
   return out;
 }
 

@@ -9,16 +9,22 @@
 // face duals [N + S, N + S + F). Segment q of edge e joins edge-nodes q and q+1, where edge-node
 // 0 is edges[e][0], edge-node n+1 is edges[e][1] and edge-nodes 1..n are its samples.
 //
-// Which segments a face connects to:
-//   - a segment covered by a burn-tree edge-arc of the same triangle: none (the notes' zero-area
-//     digon face, read as "the arc sits just inside the triangle"; the digon itself would only add
-//     a leaf, so it is not built);
-//   - a segment on ∂M (edge with one triangle): only when the face has no other connection (the
-//     notes skip them: they would only add leaves);
-//   - closed surfaces that never burn (BT = inf, "residue"): a residue triangle is one face; a
-//     burned face touching the residue is connected once per contiguous stretch of contact
-//     (a segment's dual point if the stretch has one, else the unburned node), so that the
-//     face and its contact, a disk on an arc, add no cycle.
+// Precisely, C is the order complex of the cells that survive cutting M along the burn forest
+// and removing the burned nodes: faces (open 2-cells), segments (open 1-cells) and unburned
+// nodes, related by "lies on the boundary of". Without closed surfaces every node burns and this
+// is the paper's graph: an edge from each face to each segment on its boundary, except
+//   - a segment covered by a burn-tree edge-arc of the same triangle (the notes' zero-area
+//     digon, read as "the arc sits just inside the triangle": the face does not reach the
+//     segment there; the digon itself would only add a leaf, so it is not built);
+//   - a segment on ∂M (edge with one triangle), a leaf that the notes skip, unless the face has
+//     no other connection.
+// On closed surfaces that never burn (BT = inf), the unburned nodes are cells too: the complex
+// gets face-node and segment-node edges and the triangles (face, segment, node), i.e. the
+// closed surfaces appear barycentrically subdivided and the curves attach to them without
+// spurious cycles, so C stays homotopy equivalent to M (b2 included).
+// Where the cut splits off a piece that only a burn arc or a node connects to the rest (an arc
+// between two ∂M nodes, two sheets touching at a vertex), C gets a bridge face - node - face, only
+// between different components, so no cycle is added (`bridges` counts them).
 #include "burn.hpp"
 #include "burn_1d.hpp"
 
@@ -45,15 +51,16 @@ struct Subdivision {
   std::vector<double> point_bt;       ///< BT_M (inf when unburned)
   std::vector<double> point_radius;   ///< R (linear interpolation)
   std::vector<double> point_et;       ///< ET_M = BT_M - R (inf when unburned)
-  std::vector<char> node_in_residue;  ///< per node: on a residue triangle
 
-  // The medial curves: edges (face dual, point) with point a segment dual or a residue node.
+  // The medial curves: edges (face dual, segment dual), and with closed surfaces also
+  // (face, unburned node), (segment, unburned node) edges and (face, segment, node) triangles.
   std::vector<Segment> curve_edges;   ///< global point ids
-  std::vector<char> curve_anchor;     ///< per point id: attached to the residue (never burns in 1D)
+  std::vector<Tri> curve_triangles;   ///< global point ids (only with closed surfaces)
 
   std::size_t crossing_arcs = 0;      ///< burn arcs dropped because they crossed another (round-off)
   std::size_t unconnected_faces = 0;  ///< faces with no side to connect (should not happen)
   std::size_t residue_triangles = 0;
+  std::size_t bridges = 0;            ///< components of C joined again (see build_subdivision)
 
   Index num_faces() const { return static_cast<Index>(face_tri.size()); }
   Index segment_point(Index s) const { return num_nodes + s; }
@@ -65,17 +72,15 @@ struct Subdivision {
 
 Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn);
 
-/// The medial curves as a graph with per-vertex BT_M, BT_C and ET_C. `source` maps each vertex
-/// to its point id in the subdivision. Residue triangles are fanned from their dual point (over
-/// corners and used segment duals) and returned in `residue_faces`, so that the output keeps
-/// closed surfaces.
+/// The medial curves with per-vertex BT_M, BT_C and ET_C. `source` maps each vertex to its point
+/// id in the subdivision. `faces` is empty unless the complex has closed surfaces.
 struct MedialCurves {
   std::vector<Vec3> points;
   std::vector<double> radius, bt_m, bt_c, et_c;
   std::vector<Index> source;
   std::vector<int> kind;  ///< 0 graph vertex, 1 edge sample, 2 segment dual, 3 face dual
   std::vector<Segment> edges;
-  std::vector<Tri> residue_faces;
+  std::vector<Tri> faces;
 };
 
 /// ET_C per subdivision point (+inf on cycles and closed surfaces; NaN for points off C).

@@ -34,14 +34,15 @@ double mean_of(double a, double b) {
 }
 
 struct Pair {
+  int phase;  // 0: neither cell is a medial-curve edge; 1: one is (those go last)
   double prio_tau, prio_sigma;
   int type;  // 0: (edge, triangle), 1: (vertex, edge)
   Index sigma, tau;
 };
 struct PairLater {
   bool operator()(const Pair& a, const Pair& b) const {
-    return std::tie(a.prio_tau, a.prio_sigma, a.type, a.tau, a.sigma) >
-           std::tie(b.prio_tau, b.prio_sigma, b.type, b.tau, b.sigma);
+    return std::tie(a.phase, a.prio_tau, a.prio_sigma, a.type, a.tau, a.sigma) >
+           std::tie(b.phase, b.prio_tau, b.prio_sigma, b.type, b.tau, b.sigma);
   }
 };
 
@@ -219,7 +220,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     for (Index i = edge_tri_begin[e]; i < edge_tri_begin[e + 1]; ++i) {
       const Index t = edge_tris[i];
       if (!tri_alive[t]) continue;
-      if (!kept_tri[t]) heap.push({face_prio[tri_face[t]], edge_prio[e], 0, e, t});
+      if (!kept_tri[t]) heap.push({edge_curve[e], face_prio[tri_face[t]], edge_prio[e], 0, e, t});
       return;
     }
   };
@@ -228,7 +229,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     for (Index i = vert_edge_begin[v]; i < vert_edge_begin[v + 1]; ++i) {
       const Index e = vert_edges[i];
       if (!edge_alive[e]) continue;
-      if (edge_count[e] == 0 && !kept_edge[e]) heap.push({edge_prio[e], kNegInf, 1, v, e});
+      if (edge_count[e] == 0 && !kept_edge[e]) heap.push({edge_curve[e], edge_prio[e], kNegInf, 1, v, e});
       return;
     }
   };

@@ -12,9 +12,11 @@
 // theta2 and curve edges with priority > theta1, minus connected components (edge-adjacent
 // triangles; vertex-adjacent curve edges) of area < phi2 or length < phi1. Then the contraction
 // of Liu et al. 2010 removes simple pairs (sigma, tau) - tau maximal, sigma's only coface, both
-// outside the closure of the protected cells - in ascending order of (prio tau, prio sigma),
-// until none is left: the result is homotopy equivalent to the input and contains every
-// protected cell.
+// outside the closure of the protected cells - until none is left: the result is homotopy
+// equivalent to the input and contains every protected cell. Order: first every pair that
+// involves no medial-curve edge, in ascending (prio tau, prio sigma); then the pairs that cut or
+// prune the curves, in the same order (so what survives to keep the topology follows C, and C's
+// branches are pruned from low ET_C to high).
 #include "medial_curves.hpp"
 
 #include <cstddef>

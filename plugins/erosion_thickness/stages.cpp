@@ -195,8 +195,8 @@ void MedialCurvesStage::connect(const Shape& shape, MedialComplex& medial, Conte
                          run->loose_edges.size()));
   const Subdivision sub = build_subdivision(run->graph, run->burn);
   const MedialCurves curves = extract_medial_curves(run->graph, sub);
-  ctx.info(fmt::format("subdivision: {} faces, {} curve edges; {} closed-surface triangles kept", sub.num_faces(),
-                       sub.curve_edges.size(), sub.residue_triangles));
+  ctx.info(fmt::format("subdivision: {} faces, {} curve edges, {} bridges; {} closed-surface triangles kept",
+                       sub.num_faces(), sub.curve_edges.size(), sub.bridges, sub.residue_triangles));
   if (sub.crossing_arcs > 0)
     ctx.warn(fmt::format("{} burn arcs crossed another in their triangle (round-off) and were left out: the "
                          "curves may not be homotopy equivalent to the complex",

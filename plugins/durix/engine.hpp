@@ -1,0 +1,100 @@
+#pragma once
+// Internal: the state of one Durix run, shared by the algorithm files
+//   sheets.cpp       sheet labelling and singular path following (§3.3, §3.4)
+//   carve.cpp        region flood, ε test, carving and hole closing (§3.5, §3.6)
+//   propagation.cpp  the main loop, boundary simplification and the fixpoint (§3.7)
+//   problematic.cpp  splitting at problematic edges (§3.8)
+//   output.cpp       the medial complex, M_w and the segmentation (§1.4)
+#include "dual.hpp"
+#include "durix.hpp"
+
+#include <deque>
+#include <map>
+#include <unordered_set>
+#include <vector>
+
+namespace medax::durix {
+
+/// A followed singular half-path: closed when `closed`.
+struct HalfPath {
+  std::vector<HalfEdge> edges;
+  bool closed = false;
+  /// The induced surface loop: the corners met along the walk (paper §3.4.1).
+  std::vector<Index> corners;
+  /// Corner changes that did not cross a surface edge of M_w (must stay 0).
+  std::size_t corner_errors = 0;
+};
+
+enum class CarveOutcome { Removed, Significant, NotSeparated, NonManifold, TopologyChange };
+
+class Engine {
+ public:
+  Engine(Dual& dual, const RegionOracle& oracle, const DurixOptions& options, DurixReport& report,
+         const CancelFn& check_cancelled);
+
+  /// The fixpoint of passes, then §3.8.
+  void run(const ProgressFn& progress);
+
+  // --- sheets.cpp ---------------------------------------------------------------------------
+  /// Labels the sheet of face e0 with `label` (flood across regular, non-forced edges); pushes
+  /// the half-edges of its faces on singular (degree ≥ 3 or forced) edges onto `queue`.
+  std::size_t label_sheet(EdgeId e0, int label, std::deque<HalfEdge>* queue);
+  /// A half-edge on a medial edge of degree ≥ 3 (or forced) separating its face from the
+  /// neighbouring face on the same side (different or no label).
+  bool singular(const HalfEdge& h) const;
+  /// Follows the singular half-path through h0 (notes §3.4, Algorithm 2 corrected).
+  HalfPath follow(const HalfEdge& h0) const;
+  /// Boundary half-edges (degree 1) and their path: the same walk with `boundary` edges.
+  HalfPath follow_boundary(const HalfEdge& h0) const;
+  bool boundary_half_edge(const HalfEdge& h) const;
+  /// Follows every singular and boundary half-path of the final labelling and records the
+  /// checks of notes §5.5 in the report.
+  void census_paths();
+
+  // --- carve.cpp ----------------------------------------------------------------------------
+  /// Tests the region of solid cells reached from `seeds` without entering `path_nodes` (sorted)
+  /// and carves it out of the solid when every vertex is covered within ε by the path's balls.
+  /// With `stop_at_labels`, a region touching a labelled face is not separated by the path.
+  /// Without `test_coverage`, the ε test is skipped (only for carvings that remove no vertex).
+  CarveOutcome carve(const std::vector<CellId>& path_nodes, const std::vector<CellId>& seeds, bool stop_at_labels,
+                     bool test_coverage = true);
+  /// Nodes (cells) of a path.
+  std::vector<CellId> path_nodes(const HalfPath& path) const;
+
+  // --- propagation.cpp ----------------------------------------------------------------------
+  /// One pass: labels from a fresh seed per component, carving insignificant sheets. Returns
+  /// the number of regions removed.
+  std::size_t pass();
+  std::size_t propagate(EdgeId seed);
+  std::size_t simplify_boundaries();
+  /// Carves the ends of curves (nodes with three surface facets) covered within ε.
+  std::size_t prune_leaves();
+  /// Appendix A: flat cells (four cocircular corners) with two surface facets carry no ball;
+  /// removing one flips the surface diagonal of a planar quad, which moves no vertex.
+  std::size_t peel_flat_cells();
+  EdgeId choose_seed(int component) const;
+
+  // --- problematic.cpp ----------------------------------------------------------------------
+  void split_problematic();
+  bool problematic(const Facet& f) const;
+
+  // --- state --------------------------------------------------------------------------------
+  Dual& d;
+  const RegionOracle& oracle;
+  const DurixOptions& options;
+  DurixReport& report;
+  const CancelFn& check_cancelled;
+  int next_label = 0;
+  /// Removed input vertices attached to the surface facet closest to them (notes §3.6): they are
+  /// tested again when that facet is carved away.
+  std::map<Facet, std::vector<Index>> attached;
+  std::vector<CellId> witness;  ///< per vertex: the kept cell it was attached to (kNoId: none)
+  /// Per component: the preferred seed cell (largest ball whose centre is inside the input).
+  std::vector<CellId> preferred_seed;
+
+  // Scratch marks (stamped, so no clearing between queries).
+  std::vector<std::uint32_t> cell_mark, vertex_mark;
+  std::uint32_t stamp = 0;
+};
+
+}  // namespace medax::durix

@@ -1,0 +1,174 @@
+// Problematic edges (paper §4.7, Algorithm 3; notes §3.8): a degree-3 medial edge whose three
+// faces carry the same sheet label. Each chain of problematic edges is extended from its free
+// end (the end not on the sheet's boundary) to the nearest boundary node of the sheet by a
+// shortest path (Dijkstra on centre distances) over the sheet's regular edges; those edges are
+// forced singular and the sheet is relabelled, which splits it. Whatever remains (chains closed
+// on themselves, or with no free end) is resolved by isolating one face of the edge (its
+// regular edges forced singular), so the check "no edge has three faces of one sheet" holds.
+#include "engine.hpp"
+
+#include <map>
+#include <queue>
+
+namespace medax::durix {
+
+namespace {
+
+/// The volumetric faces (DT edges) of a facet.
+int facet_faces(const Dual& d, const Facet& t, EdgeId out[3]) {
+  const auto v = d.facet_vertices(t);
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    const EdgeId e = d.edge_of(t.cell, v[i], v[(i + 1) % 3]);
+    if (d.volumetric(e)) out[n++] = e;
+  }
+  return n;
+}
+
+}  // namespace
+
+bool Engine::problematic(const Facet& f) const {
+  if (!d.is_medial_edge(f) || d.degree(f) != 3) return false;
+  EdgeId faces[3];
+  facet_faces(d, f, faces);
+  const int l = d.label(faces[0]);
+  return l >= 0 && d.label(faces[1]) == l && d.label(faces[2]) == l;
+}
+
+void Engine::split_problematic() {
+  const auto collect = [&]() {
+    std::vector<Facet> out;
+    for (CellId c = 0; c < d.num_cells(); ++c) {
+      if (!d.solid(c)) continue;
+      for (int k = 0; k < 4; ++k) {
+        const CellId n = d.neighbour(c, k);
+        if (!d.solid(n) || n < c) continue;
+        const Facet f = d.facet(c, k);
+        if (problematic(f)) out.push_back(f);
+      }
+    }
+    return out;
+  };
+  const auto relabel = [&](int label) {
+    std::vector<EdgeId> faces;
+    for (EdgeId e = 0; e < d.num_edges(); ++e)
+      if (d.volumetric(e) && d.label(e) == label) faces.push_back(e);
+    for (EdgeId e : faces) d.set_label(e, -1);
+    bool first = true;
+    for (EdgeId e : faces)
+      if (d.label(e) < 0) {
+        label_sheet(e, first ? label : next_label++, nullptr);
+        first = false;
+      }
+  };
+  // Regular edges of sheet `label` usable by the cut: degree 2, not forced, both faces on it.
+  const auto regular_in = [&](const Facet& t, int label) {
+    if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t)) return false;
+    EdgeId f[3];
+    facet_faces(d, t, f);
+    return d.label(f[0]) == label && d.label(f[1]) == label;
+  };
+  const auto on_boundary = [&](CellId c, int label) {
+    for (int k = 0; k < 4; ++k) {
+      const Facet t = d.facet(c, k);
+      if (!d.is_medial_edge(t) || d.degree(t) != 1) continue;
+      EdgeId f[3];
+      facet_faces(d, t, f);
+      if (d.label(f[0]) == label) return true;
+    }
+    return false;
+  };
+
+  std::vector<Facet> found = collect();
+  report.problematic_edges = found.size();
+  for (int round = 0; round < 32 && !found.empty(); ++round) {
+    if (check_cancelled) check_cancelled();
+    bool progress = false;
+    std::map<int, std::vector<Facet>> by_label;
+    for (const Facet& f : found) {
+      EdgeId faces[3];
+      facet_faces(d, f, faces);
+      by_label[d.label(faces[0])].push_back(f);
+    }
+    for (auto& [label, facets] : by_label) {
+      // Chains: problematic edges joined at nodes. Node degree in the chain.
+      std::map<CellId, int> chain_degree;
+      for (const Facet& f : facets) {
+        ++chain_degree[f.cell];
+        ++chain_degree[d.other_cell(f)];
+      }
+      // Free ends: chain endpoints not on the sheet's boundary.
+      std::vector<CellId> free_ends;
+      for (const auto& [node, deg] : chain_degree)
+        if (deg == 1 && !on_boundary(node, label)) free_ends.push_back(node);
+      for (CellId start : free_ends) {
+        // Dijkstra to the nearest node on the sheet's boundary.
+        std::map<CellId, double> dist;
+        std::map<CellId, Facet> via;
+        using Item = std::pair<double, CellId>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+        dist[start] = 0;
+        heap.push({0, start});
+        CellId target = kNoId;
+        std::size_t visited = 0;
+        while (!heap.empty() && visited < 200000) {
+          const auto [dc, c] = heap.top();
+          heap.pop();
+          if (dc > dist[c]) continue;
+          ++visited;
+          if (c != start && on_boundary(c, label)) {
+            target = c;
+            break;
+          }
+          for (int k = 0; k < 4; ++k) {
+            const Facet t = d.facet(c, k);
+            if (!regular_in(t, label)) continue;
+            const CellId n = d.neighbour(c, k);
+            const double nd = dc + (d.centre(n) - d.centre(c)).norm();
+            const auto it = dist.find(n);
+            if (it == dist.end() || nd < it->second) {
+              dist[n] = nd;
+              via[n] = t;
+              heap.push({nd, n});
+            }
+          }
+        }
+        if (target == kNoId) continue;
+        for (CellId c = target; c != start;) {
+          const Facet t = via.at(c);
+          d.set_forced(t, true);
+          ++report.forced_edges;
+          c = t.cell == c ? d.other_cell(t) : t.cell;
+        }
+        progress = true;
+      }
+      relabel(label);
+    }
+    const std::vector<Facet> again = collect();
+    if (!progress || again.size() >= found.size()) {
+      found = again;
+      break;
+    }
+    found = again;
+  }
+  // Fallback: isolate the face with the largest id at each remaining problematic edge.
+  for (int round = 0; round < 1000 && !found.empty(); ++round) {
+    const Facet f = found.front();
+    EdgeId faces[3];
+    facet_faces(d, f, faces);
+    const EdgeId lone = std::max({faces[0], faces[1], faces[2]});
+    const int label = d.label(lone);
+    std::vector<Facet> ring;
+    d.ring_facets(lone, ring);
+    for (const Facet& t : ring)
+      if (d.degree(t) == 2 && !d.forced(t)) {
+        d.set_forced(t, true);
+        ++report.forced_edges;
+      }
+    relabel(label);
+    found = collect();
+  }
+  report.problematic_left = found.size();
+}
+
+}  // namespace medax::durix

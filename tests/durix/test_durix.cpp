@@ -1,0 +1,227 @@
+// Tests of the durix package (notes §5): conversion, extraction invariants on the fixtures,
+// the bump, determinism, refusals, and the stages.
+#include "fixtures.hpp"
+#include "stages.hpp"
+
+#include <medax/services/topology.hpp>
+#include <medax/testing/shapes.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+using namespace medax;
+using namespace medax::durix;
+using durix::test::check_invariants;
+using durix::test::fixture;
+
+namespace {
+
+DurixResult run(const SurfaceMesh& mesh, double relative_eps, DurixOptions options = {}) {
+  const EpsilonOracle oracle(relative_eps * bbox_diagonal(mesh.vertices));
+  return durix_medial_axis(mesh, oracle, options);
+}
+
+std::size_t count_type(const MedialComplex& mc, int type) {
+  const auto& t = mc.edge_props.labels.get("path_type");
+  return static_cast<std::size_t>(std::count(t.begin(), t.end(), type));
+}
+
+}  // namespace
+
+TEST_CASE("delaunay_surface converts the fixtures and keeps vertices and genus", "[durix][delaunay_surface]") {
+  const std::vector<std::pair<std::string, SurfaceMesh>> shapes = {
+      {"box", testing::make_box(1.0, 0.7, 0.4, 6)},
+      {"torus", testing::make_torus(1.0, 0.35, 48, 16)},
+      {"capsule", testing::make_capsule(0.3, 0.8, 24)},
+      {"cylinder", testing::make_cylinder(0.5, 1.0, 32)},
+      {"ellipsoid", testing::make_ellipsoid(1.5, 1.0, 0.6, 3)}};
+  for (const auto& [name, mesh] : shapes) {
+    INFO(name);
+    DelaunayMeshReport report;
+    const SurfaceMesh out = make_delaunay_mesh(mesh, {}, &report);
+    CHECK(check_delaunay_mesh(out).ok());
+    REQUIRE(out.vertices.size() >= mesh.vertices.size());
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) CHECK(out.vertices[i] == mesh.vertices[i]);
+    const auto before = services::surface_topology(mesh), after = services::surface_topology(out);
+    CHECK(after.closed());
+    CHECK(after.genus() == before.genus());
+    CHECK(after.complex.b0 == before.complex.b0);
+  }
+}
+
+TEST_CASE("delaunay_surface refuses instead of looping when it does not converge", "[durix][delaunay_surface]") {
+  // Splits only, on a jittered torus: splits without flips make skinny faces that are split
+  // again; the insertion budget stops it with a clear error.
+  SurfaceMesh mesh = testing::make_torus(1.0, 0.3, 40, 12);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.003, 0.003);
+  for (Vec3& p : mesh.vertices) p += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  DelaunayMeshOptions options;
+  options.flips = false;
+  options.max_insertions_factor = 1.0;
+  try {
+    make_delaunay_mesh(mesh, options);
+    FAIL("expected the insertion budget to stop the conversion");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()).find("gave up") != std::string::npos);
+  }
+  // With flips (the default) the same mesh converts.
+  DelaunayMeshReport report;
+  const SurfaceMesh out = make_delaunay_mesh(mesh, {}, &report);
+  CHECK(check_delaunay_mesh(out).ok());
+  CHECK(report.flips > 0);
+  CHECK(services::surface_topology(out).genus() == 1);
+}
+
+TEST_CASE("the extraction refuses a non-Delaunay mesh", "[durix]") {
+  const SurfaceMesh raw = testing::make_torus(1.0, 0.35, 48, 16);
+  REQUIRE(check_delaunay_mesh(raw).non_delaunay_faces > 0);
+  const EpsilonOracle oracle(0.01);
+  try {
+    durix_medial_axis(raw, oracle);
+    FAIL("a non-Delaunay mesh was accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).find("delaunay_surface") != std::string::npos);
+  }
+}
+
+TEST_CASE("invariants on the sphere", "[durix][fixtures]") {
+  const SurfaceMesh m = fixture("sphere");
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  // The sphere's axis is a point: a contractible complex of balls inside the sphere around its
+  // centre (the 1% jitter of the vertices, and the vertices carved away within ε, leave a
+  // small sheet with short peaks towards the surface).
+  CHECK(services::complex_topology(r.medial).euler == 1);
+  double biggest = 0;
+  for (std::size_t i = 0; i < r.medial.num_vertices(); ++i) {
+    CHECK(r.medial.centres[i].norm() < 0.75);
+    CHECK(r.medial.centres[i].norm() + r.medial.radii[i] < 1.05);
+    biggest = std::max(biggest, r.medial.radii[i]);
+  }
+  CHECK(biggest > 0.95);
+}
+
+TEST_CASE("invariants on the ellipsoid", "[durix][fixtures]") {
+  const SurfaceMesh m = fixture("ellipsoid");
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  CHECK(services::complex_topology(r.medial).euler == 1);
+  // One main sheet close to the exact medial axis, with a boundary.
+  CHECK(count_type(r.medial, kBoundary) > 0);
+  double worst = 0;
+  for (const Vec3& c : r.medial.centres) worst = std::max(worst, testing::ellipsoid_axis_distance(c, 1.5, 1.0, 0.6));
+  CHECK(worst < 0.15);
+}
+
+TEST_CASE("invariants on the box", "[durix][fixtures]") {
+  const SurfaceMesh m = fixture("box");
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  CHECK(services::complex_topology(r.medial).euler == 1);
+  CHECK(r.report.sheets >= 2);
+  CHECK(count_type(r.medial, kSingular) > 0);
+}
+
+TEST_CASE("invariants on the torus", "[durix][fixtures]") {
+  const SurfaceMesh m = fixture("torus");
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  CHECK(services::complex_topology(r.medial).euler == 0);  // a circle's homotopy type
+  CHECK(services::surface_topology(r.surface).genus() == 1);
+  for (const Vec3& c : r.medial.centres) CHECK(testing::torus_axis_distance(c, 1.0) < 0.2);
+}
+
+TEST_CASE("invariants on the capsule", "[durix][fixtures]") {
+  const SurfaceMesh m = fixture("capsule");
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  CHECK(services::complex_topology(r.medial).euler == 1);
+  for (const Vec3& c : r.medial.centres) CHECK(testing::capsule_axis_distance(c, 0.8) < 0.15);
+}
+
+TEST_CASE("epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
+  const SurfaceMesh m = fixture("ellipsoid");
+  DurixOptions options;
+  options.simplify_boundaries = false;
+  const DurixResult r = durix_medial_axis(m, EpsilonOracle(0.0), options);
+  check_invariants(m, r, 0.0);
+  CHECK(r.report.removals == 0);
+  CHECK(r.report.removed_vertices == 0);
+  CHECK(r.surface.faces.size() == m.faces.size());
+}
+
+TEST_CASE("a bump is kept exactly when epsilon is below its height", "[durix][bump]") {
+  // Ellipsoid (1.2, 1, 0.8) with a Gaussian bump of height h on its top (z = 0.8). The bump is
+  // kept when M_w still reaches above the ellipsoid by more than h/2 and the axis has nodes in
+  // it (centres above z = 0.5: the ellipsoid's own axis lies in z = 0).
+  const double height = 0.12;
+  const SurfaceMesh m = durix::test::bumped_ellipsoid(height);
+  for (const double factor : {0.25, 0.5, 1.5, 3.0}) {
+    const double eps = factor * height;
+    INFO("epsilon = " << eps);
+    const DurixResult r = durix_medial_axis(m, EpsilonOracle(eps));
+    check_invariants(m, r, eps);
+    double top = -1, node_top = -1;
+    for (const Vec3& p : r.surface.vertices) top = std::max(top, p.z());
+    for (const Vec3& c : r.medial.centres) node_top = std::max(node_top, c.z());
+    const bool kept = top > 0.8 + height / 2 && node_top > 0.5;
+    CHECK(kept == (factor < 1));
+  }
+}
+
+TEST_CASE("the extraction is deterministic", "[durix]") {
+  const SurfaceMesh m = fixture("box");
+  const DurixResult a = run(m, 0.01), b = run(m, 0.01);
+  CHECK(a.medial.centres == b.medial.centres);
+  CHECK(a.medial.radii == b.medial.radii);
+  CHECK(a.medial.edges == b.medial.edges);
+  CHECK(a.medial.faces == b.medial.faces);
+  CHECK(a.medial.face_props.labels.get("sheet") == b.medial.face_props.labels.get("sheet"));
+  CHECK(a.medial.edge_props.labels.get("path_type") == b.medial.edge_props.labels.get("path_type"));
+  CHECK(a.surface.faces == b.surface.faces);
+  CHECK(a.face_sheet == b.face_sheet);
+}
+
+TEST_CASE("the stages run through their parameters", "[durix][stages]") {
+  Shape shape;
+  shape.mesh = testing::make_box(1.0, 0.6, 0.3, 5);
+  BasicContext ctx(1);
+  DelaunaySurfaceStage conversion;
+  conversion.configure(default_params(DelaunaySurfaceStage::describe().params));
+  conversion.condition(shape, ctx);
+  CHECK(check_delaunay_mesh(shape.mesh).ok());
+
+  DurixStage stage;
+  stage.configure(durix_params(0.01));
+  const MedialComplex mc = stage.extract(shape, ctx);
+  CHECK(mc.num_vertices() > 0);
+  CHECK(mc.face_props.labels.has("sheet"));
+  CHECK(mc.edge_props.labels.has("path_type"));
+  CHECK(mc.generator_kind == "mesh_vertex");
+
+  EpsilonOracleStage oracle;
+  oracle.configure(default_params(EpsilonOracleStage::describe().params));
+  MedialComplex copy = mc;
+  oracle.measure(shape, copy, ctx);
+  REQUIRE(copy.vertex_props.fields.has("durix_coverage"));
+  for (double c : copy.vertex_props.fields.get("durix_coverage")) CHECK(c >= 4);  // its own 4 vertices
+}
+
+TEST_CASE("delaunay_surface refuses an open mesh clearly", "[durix][stages]") {
+  Shape shape;
+  shape.mesh = testing::make_sphere(1.0, 2);
+  shape.mesh.faces.pop_back();
+  BasicContext ctx(1);
+  DelaunaySurfaceStage conversion;
+  conversion.configure(default_params(DelaunaySurfaceStage::describe().params));
+  try {
+    conversion.condition(shape, ctx);
+    FAIL("an open mesh was accepted");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()).find("delaunay_surface") != std::string::npos);
+    CHECK(std::string(e.what()).find("repair") != std::string::npos);
+  }
+}

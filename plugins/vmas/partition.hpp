@@ -9,8 +9,11 @@
 namespace medax::vmas {
 
 /// cluster_of[v] = argmin_j E_v(m_j), or −1 for inactive vertices (or when there is no sphere).
+/// `hint` (optional, e.g. the previous partition; may be stale or out of range) only speeds
+/// the search up: spheres that provably cannot beat the hinted one are not evaluated. The result
+/// is the same with any hint or none. `cluster_of` may be `hint` itself.
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
-                     std::vector<int>& cluster_of);
+                     std::vector<int>& cluster_of, const std::vector<int>* hint = nullptr);
 
 /// The clusters as lists: members of sphere i are members[offsets[i] .. offsets[i+1]), ascending.
 struct Clusters {

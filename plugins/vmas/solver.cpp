@@ -51,7 +51,7 @@ SphereId VmasSolver::push(const Sphere& s) {
 }
 
 std::size_t VmasSolver::partition() {
-  assign_vertices(*input_, spheres_, options_.lambda_partition, cluster_of_);
+  assign_vertices(*input_, spheres_, options_.lambda_partition, cluster_of_, &cluster_of_);
   clusters_ = group_clusters(cluster_of_, spheres_.size());
   // Spheres with a too-small cluster are deleted; their vertices stay unassigned for this
   // iteration (the authors' code; notes §2.3). Never delete them all.

@@ -266,6 +266,13 @@ TEST_CASE("vmas partition is the argmin of eq 8 and clusters have at least 4 ver
       if (vertex_energy(in, v, spheres[j], 0.2) < chosen) ++wrong;
   }
   CHECK(wrong == 0);
+  // The hint only prunes: any hint, stale or out of range, gives the same partition.
+  std::vector<int> hinted, garbage(in.size());
+  for (Index v = 0; v < in.size(); ++v) garbage[v] = static_cast<int>((v * 7919) % (spheres.size() + 3)) - 1;
+  assign_vertices(in, spheres, 0.2, hinted, &solver.assignment());
+  CHECK(hinted == cluster_of);
+  assign_vertices(in, spheres, 0.2, hinted, &garbage);
+  CHECK(hinted == cluster_of);
 }
 
 TEST_CASE("vmas dual: connected input gives a connected skeleton whose edges are the touching clusters") {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <queue>
 #include <stdexcept>
 
 namespace medax::et {
@@ -75,15 +74,66 @@ std::size_t BurnGraph::count_arcs() const {
 
 namespace {
 
-struct Entry {
-  double time;
-  Index node;
-  std::uint32_t version;
-};
-struct Later {
-  bool operator()(const Entry& a, const Entry& b) const {
-    return a.time > b.time || (a.time == b.time && a.node > b.node);
+/// Indexed 4-ary min-heap of nodes keyed by (key[node], node): decrease-key in place, so the
+/// heap never holds stale entries (the notes' lazy-deletion heap does the same work with more
+/// memory traffic).
+class NodeHeap {
+ public:
+  explicit NodeHeap(const std::vector<double>& key) : key_(key), where_(key.size(), kAbsent) {}
+  bool empty() const { return heap_.empty(); }
+  Index top() const { return heap_.front(); }
+  /// Inserts `n` or moves it up after its key decreased.
+  void update(Index n) {
+    std::size_t i = where_[n];
+    if (i == kAbsent) {
+      i = heap_.size();
+      heap_.push_back(n);
+    }
+    sift_up(i, n);
   }
+  Index pop() {
+    const Index top = heap_.front();
+    where_[top] = kAbsent;
+    const Index last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) sift_down(0, last);
+    return top;
+  }
+
+ private:
+  static constexpr std::size_t kAbsent = ~std::size_t(0);
+  bool less(Index a, Index b) const { return key_[a] < key_[b] || (key_[a] == key_[b] && a < b); }
+  void sift_up(std::size_t i, Index n) {
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / 4;
+      if (!less(n, heap_[parent])) break;
+      heap_[i] = heap_[parent];
+      where_[heap_[i]] = i;
+      i = parent;
+    }
+    heap_[i] = n;
+    where_[n] = i;
+  }
+  void sift_down(std::size_t i, Index n) {
+    const std::size_t size = heap_.size();
+    for (;;) {
+      const std::size_t first = 4 * i + 1;
+      if (first >= size) break;
+      std::size_t best = first;
+      const std::size_t end = std::min(first + 4, size);
+      for (std::size_t c = first + 1; c < end; ++c)
+        if (less(heap_[c], heap_[best])) best = c;
+      if (!less(heap_[best], n)) break;
+      heap_[i] = heap_[best];
+      where_[heap_[i]] = i;
+      i = best;
+    }
+    heap_[i] = n;
+    where_[n] = i;
+  }
+  const std::vector<double>& key_;
+  std::vector<std::size_t> where_;
+  std::vector<Index> heap_;
 };
 
 /// Per-node exposure test (§3): among the unburned sectors U, the bridges of H_v[U] are
@@ -163,27 +213,22 @@ BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
   std::vector<double> node_time(N, kInf), sector_time(S, kInf);
   std::vector<char> node_burned(N, 0), sector_burned(S, 0);
   std::vector<Index> prime_sector(N, kNone);
-  std::vector<std::uint32_t> version(N, 0);
   r.prime_node.assign(S, kNone);
   r.prime_tri.assign(S, kNone);
   r.burn_order.reserve(N);
 
-  std::vector<Entry> storage;
-  storage.reserve(N);
-  std::priority_queue<Entry, std::vector<Entry>, Later> queue(Later{}, std::move(storage));
+  NodeHeap queue(node_time);
   for (Index n = 0; n < N; ++n)
     if (g.boundary[n]) {
       node_time[n] = g.radius[n];
-      queue.push({node_time[n], n, 0});
+      queue.update(n);
     }
 
   Exposure exposure(g);
   while (!queue.empty()) {
-    const Entry top = queue.top();
+    const Index v = queue.top();
+    if (node_time[v] == kInf) break;  // only closed surfaces remain
     queue.pop();
-    const Index v = top.node;
-    if (node_burned[v] || top.version != version[v]) continue;
-    if (top.time == kInf) break;  // only closed surfaces remain
     ++r.pops;
     if (cancel && (r.pops & 0xffff) == 0) cancel();
     const double time = node_time[v];
@@ -210,7 +255,7 @@ BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
           if (h < node_time[u]) {
             node_time[u] = h;
             prime_sector[u] = ts - g.sector_begin[u];
-            queue.push({h, u, ++version[u]});
+            queue.update(u);
           }
         }
       });
@@ -220,7 +265,7 @@ BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
         if (!sector_burned[s] && (best == kNone || sector_time[s] < sector_time[best])) best = s;
       prime_sector[v] = best - g.sector_begin[v];
       node_time[v] = sector_time[best];
-      queue.push({node_time[v], v, ++version[v]});
+      if (node_time[v] < kInf) queue.update(v);
     }
   }
   r.bt.resize(N);

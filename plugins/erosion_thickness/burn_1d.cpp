@@ -1,6 +1,7 @@
 #include "burn_1d.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <queue>
 #include <stdexcept>
@@ -27,8 +28,10 @@ std::vector<double> burn_1d(const Graph1D& graph) {
     adj[fill[e[1]]++] = {e[0], static_cast<Index>(i)};
   }
 
-  // arrivals[v]: times of the fire arriving through distinct edges, kept sorted (few per vertex).
-  std::vector<std::vector<double>> arrivals(nv);
+  // Arrival times of the fire through distinct edges, sorted, in a CSR slot per vertex (at most
+  // one arrival per incident edge).
+  std::vector<double> arrival_store(begin[nv]);
+  std::vector<std::uint32_t> arrival_count(nv, 0);
   std::vector<double> key(nv, kInf1), bt(nv, kInf1);
   std::vector<char> burned(nv, 0), edge_burned(graph.edges.size(), 0);
   using Entry = std::pair<double, Index>;
@@ -38,8 +41,9 @@ std::vector<double> burn_1d(const Graph1D& graph) {
     if (has_anchor && graph.anchored[v]) return kInf1;
     const std::size_t d = degree(v);
     double k = d <= 1 ? graph.ignite[v] : kInf1;
-    const auto& a = arrivals[v];
-    if (d >= 1 && !a.empty() && a.size() >= d - 1) k = std::min(k, d == 1 ? a.front() : a[d - 2]);
+    const double* a = arrival_store.data() + begin[v];
+    const std::size_t n = arrival_count[v];
+    if (d >= 1 && n >= 1 && n >= d - 1) k = std::min(k, d == 1 ? a[0] : a[d - 2]);
     return k;
   };
   for (std::size_t v = 0; v < nv; ++v) {
@@ -57,8 +61,10 @@ std::vector<double> burn_1d(const Graph1D& graph) {
       if (edge_burned[e] || burned[u]) continue;
       edge_burned[e] = 1;
       const double len = (graph.points[u] - graph.points[v]).norm();
-      auto& a = arrivals[u];
-      a.insert(std::upper_bound(a.begin(), a.end(), t + len), t + len);
+      double* a = arrival_store.data() + begin[u];
+      std::size_t n = arrival_count[u]++;
+      while (n > 0 && a[n - 1] > t + len) a[n] = a[n - 1], --n;
+      a[n] = t + len;
       const double k = candidate(u);
       if (k < key[u]) {
         key[u] = k;

@@ -1,6 +1,7 @@
 #include "skeleton.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -50,6 +51,8 @@ struct PairLater {
 
 Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std::vector<Segment>& loose_edges,
                           const SkeletonOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   const std::size_t np = sub.num_points();
   const Index V = g.num_vertices();
   const std::vector<double> et_c = curve_erosion_thickness(sub);
@@ -95,22 +98,32 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     for (int j = 0; j < 3; ++j)
       recs.push_back({key_of(tris[t][j], tris[t][(j + 1) % 3]), static_cast<Index>(t), j});
   for (const Segment& e : loose_edges) recs.push_back({key_of(e[0], e[1]), kNone, 0});
+  for (const Segment& e : sub.curve_edges) recs.push_back({key_of(e[0], e[1]), kNone, 1});  // marks curve edges
   std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
     return a.key < b.key || (a.key == b.key && a.tri < b.tri);
   });
   std::vector<Segment> edges;
+  std::vector<char> edge_curve;
   std::vector<Index> edge_tri_begin{0}, edge_tris;
   std::vector<std::array<Index, 3>> tri_edge(nt);
   for (std::size_t i = 0; i < recs.size();) {
-    const Index e = static_cast<Index>(edges.size());
-    edges.push_back({static_cast<Index>(recs[i].key >> 32), static_cast<Index>(recs[i].key & 0xffffffffu)});
     std::size_t k = i;
-    for (; k < recs.size() && recs[k].key == recs[i].key; ++k)
-      if (recs[k].tri != kNone) {
-        tri_edge[recs[k].tri][recs[k].side] = e;
-        edge_tris.push_back(recs[k].tri);
-      }
-    edge_tri_begin.push_back(static_cast<Index>(edge_tris.size()));
+    bool cell = false, curve = false;
+    for (; k < recs.size() && recs[k].key == recs[i].key; ++k) {
+      if (recs[k].tri != kNone || recs[k].side == 0) cell = true;
+      else curve = true;
+    }
+    if (cell) {  // (a curve edge is always a fan spoke or a segment piece; never make one up)
+      const Index e = static_cast<Index>(edges.size());
+      edges.push_back({static_cast<Index>(recs[i].key >> 32), static_cast<Index>(recs[i].key & 0xffffffffu)});
+      edge_curve.push_back(curve);
+      for (std::size_t r = i; r < k; ++r)
+        if (recs[r].tri != kNone) {
+          tri_edge[recs[r].tri][recs[r].side] = e;
+          edge_tris.push_back(recs[r].tri);
+        }
+      edge_tri_begin.push_back(static_cast<Index>(edge_tris.size()));
+    }
     i = k;
   }
   recs.clear();
@@ -127,23 +140,17 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
       for (Index v : edges[e]) vert_edges[fill[v]++] = static_cast<Index>(e);
   }
 
-  // Curve edges and their priorities.
-  std::vector<std::uint64_t> curve_keys;
-  curve_keys.reserve(sub.curve_edges.size());
-  for (const Segment& e : sub.curve_edges) curve_keys.push_back(key_of(e[0], e[1]));
-  std::sort(curve_keys.begin(), curve_keys.end());
-  std::vector<char> edge_curve(ne, 0);
+  // Curve edge priorities.
   std::vector<double> edge_prio(ne, kNegInf);
   for (std::size_t e = 0; e < ne; ++e)
-    if (std::binary_search(curve_keys.begin(), curve_keys.end(), key_of(edges[e][0], edges[e][1]))) {
-      edge_curve[e] = 1;
-      edge_prio[e] = mean_of(et_c[edges[e][0]], et_c[edges[e][1]]);
-    }
+    if (edge_curve[e]) edge_prio[e] = mean_of(et_c[edges[e][0]], et_c[edges[e][1]]);
 
   Skeleton out;
   out.refined_faces = nt;
   out.refined_edges = ne;
 
+  out.seconds_refine = std::chrono::duration<double>(Clock::now() - t0).count();
+  const auto t1 = Clock::now();
   // ---- protection ----------------------------------------------------------------------------
   std::vector<char> tri_protected(nt, 0);
   for (std::size_t t = 0; t < nt; ++t) tri_protected[t] = face_prio[tri_face[t]] > options.theta2;
@@ -264,6 +271,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     }
   }
 
+  out.seconds_contract = std::chrono::duration<double>(Clock::now() - t1).count();
   // ---- output --------------------------------------------------------------------------------
   std::vector<Index> local(np, kNone);
   for (std::size_t p = 0; p < np; ++p) {

@@ -45,6 +45,7 @@ struct Skeleton {
   std::size_t refined_vertices = 0, refined_edges = 0, refined_faces = 0;
   std::size_t protected_faces = 0, protected_curve_edges = 0;
   std::size_t dropped_sheet_components = 0, dropped_curve_components = 0;
+  double seconds_refine = 0, seconds_contract = 0;
 };
 
 /// `loose_edges`: edges of the input complex that bound no triangle (vertex ids of the

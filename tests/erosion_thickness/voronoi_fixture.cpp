@@ -10,8 +10,14 @@
 namespace medax::et::testing {
 
 MedialComplex interior_voronoi_complex(const SurfaceMesh& mesh) {
+  MedialComplex mc = interior_voronoi_complex(mesh.vertices, mesh);
+  mc.generator_kind = "points";  // indices into `points`
+  return mc;
+}
+
+MedialComplex interior_voronoi_complex(const std::vector<Vec3>& points, const SurfaceMesh& mesh) {
   using services::DelaunayTetrahedralization;
-  const DelaunayTetrahedralization dt = services::delaunay_tetrahedralize(mesh.vertices);
+  const DelaunayTetrahedralization dt = services::delaunay_tetrahedralize(points);
   const services::InsideTest inside(mesh);
   const std::vector<char> interior = inside.inside(dt.circumcentres);
 
@@ -24,7 +30,7 @@ MedialComplex interior_voronoi_complex(const SurfaceMesh& mesh) {
       std::sort(g.begin(), g.end());
       mc.generators.push_back(std::move(g));
     }
-  mc.generator_kind = "mesh_vertex";
+  mc.generator_kind = "points";  // indices into `points`
 
   // Voronoi edges: facets between two interior cells.
   for (std::size_t c = 0; c < dt.cells.size(); ++c)

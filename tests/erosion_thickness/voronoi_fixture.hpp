@@ -12,5 +12,8 @@
 namespace medax::et::testing {
 
 MedialComplex interior_voronoi_complex(const SurfaceMesh& mesh);
+/// The same from other points of the surface (e.g. a subset of its vertices); the generators
+/// index `points` (generator_kind "points").
+MedialComplex interior_voronoi_complex(const std::vector<Vec3>& points, const SurfaceMesh& mesh);
 
 }  // namespace medax::et::testing

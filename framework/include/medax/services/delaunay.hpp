@@ -1,6 +1,7 @@
 #pragma once
-// Delaunay tetrahedralization of surface points (CGAL, parallel with TBB), returned as plain
-// arrays so callers never include CGAL.
+// Delaunay tetrahedralization of surface points (CGAL), returned as plain arrays so callers never
+// include CGAL. Insertion is sequential (CGAL's parallel insertion loses on 2 shared cores); the
+// per-cell work (ordering, neighbours, circumcentres) runs in parallel with TBB.
 #include <medax/geometry.hpp>
 
 #include <vector>
@@ -17,7 +18,9 @@ struct DelaunayTetrahedralization {
   /// neighbours[c][k]: the cell across the facet opposite corner k; kInfinite when that
   /// neighbour is an infinite cell (the facet is on the convex hull).
   std::vector<std::array<std::int64_t, 4>> neighbours;
-  /// Circumcentre and circumradius of every finite cell (the Voronoi vertices).
+  /// Circumcentre and circumradius of every finite cell (the Voronoi vertices). The centre is
+  /// equidistant from the four corners up to its final rounding, also for nearly flat cells
+  /// (recomputed with exact rationals); the radius is the distance to corner 0.
   std::vector<Vec3> circumcentres;
   std::vector<double> circumradii;
 
@@ -25,7 +28,7 @@ struct DelaunayTetrahedralization {
 };
 
 struct DelaunayOptions {
-  bool parallel = true;  ///< TBB parallel insertion and circumcentres (same result, faster)
+  bool parallel = true;  ///< TBB-parallel cell ordering and circumcentres (same result, faster)
 };
 
 /// Throws std::invalid_argument when the points span less than three dimensions.

@@ -1,0 +1,217 @@
+#include "interior_voronoi.hpp"
+
+#include "ray_parity.hpp"
+
+#include <medax/services/delaunay.hpp>
+#include <medax/services/inside.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+
+namespace medax::voronoi {
+
+namespace {
+
+using services::DelaunayTetrahedralization;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr Index kNone = ~Index{0};
+constexpr int kEdgePositions[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};  // i, j, then the other two
+constexpr std::size_t kBlock = 2048;  // items per parallel work unit (fixed, so the output does not depend on the schedule)
+
+/// An interior cell, in the compact numbering of the medial vertices: its corners and its four
+/// neighbours (neighbour k across the facet opposite corner k), kNone when that neighbour is
+/// infinite or exterior. 32 bytes, so a ring walk touches one cache line per step.
+struct Node {
+  std::array<Index, 4> corner;
+  std::array<Index, 4> neighbour;
+};
+
+inline int position(const std::array<Index, 4>& corner, Index v) {
+  return corner[0] == v ? 0 : corner[1] == v ? 1 : corner[2] == v ? 2 : 3;
+}
+
+/// The triangles, fan diagonals and polygon count produced by one block of vertices.
+struct FaceBlock {
+  std::vector<Tri> faces;
+  std::vector<Segment> diagonals;
+  std::vector<int> polygon;  ///< per face, the polygon's number within the block
+  int polygons = 0;
+};
+
+/// Voronoi polygons owned by the vertices [begin, end): for each Delaunay edge of the cell of
+/// vertex i, the ring of cells around it, when it is finite, all interior, and i is its lowest
+/// vertex. The ring is fan-triangulated from i.
+void faces_of_block(const std::vector<Node>& nodes, Index begin, Index end, FaceBlock& out) {
+  std::vector<Index> ring;
+  for (Index i = begin; i < end; ++i) {
+    const Node& node = nodes[i];
+    for (const auto& e : kEdgePositions) {
+      // i's two neighbours in the ring around the edge are across the facets opposite the other
+      // two corners: when one is lower or not interior (kNone is the highest), i owns no polygon.
+      const Index left = node.neighbour[e[2]], right = node.neighbour[e[3]];
+      if (left < i || right < i || left == kNone || right == kNone) continue;
+      const Index u = node.corner[e[0]], w = node.corner[e[1]];
+      Index cross = node.corner[e[2]], keep = node.corner[e[3]];
+      Index current = i;
+      ring.assign(1, i);
+      bool owned = true;
+      for (;;) {
+        const Node& at = nodes[current];
+        const Index next = at.neighbour[position(at.corner, cross)];
+        if (next == i) break;
+        if (next < i || next == kNone || ring.size() > 4096) {
+          owned = false;
+          break;
+        }
+        ring.push_back(next);
+        const auto& n = nodes[next].corner;
+        Index fresh = n[0];
+        for (Index v : n)
+          if (v != u && v != w && v != keep) fresh = v;
+        cross = keep;
+        keep = fresh;
+        current = next;
+      }
+      if (!owned) continue;
+      for (std::size_t k = 1; k + 1 < ring.size(); ++k) {
+        out.faces.push_back({i, ring[k], ring[k + 1]});
+        out.polygon.push_back(out.polygons);
+        if (k >= 2) out.diagonals.push_back({i, ring[k]});
+      }
+      ++out.polygons;
+    }
+  }
+}
+
+template <typename Body>
+void for_blocks(std::size_t n, bool parallel, const Body& body) {
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  const auto run = [&](std::size_t b) { body(b, b * kBlock, std::min(n, (b + 1) * kBlock)); };
+  if (parallel) tbb::parallel_for(std::size_t{0}, blocks, run);
+  else for (std::size_t b = 0; b < blocks; ++b) run(b);
+}
+
+}  // namespace
+
+MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
+                               const InteriorVoronoiOptions& options, InteriorVoronoiReport* report) {
+  InteriorVoronoiReport info;
+  auto t0 = Clock::now();
+
+  // 1. The Delaunay tetrahedralization, while the other core prepares the inside test.
+  std::optional<RayParityInside> ray_grid;
+  std::optional<services::InsideTest> side_of_mesh;
+  const auto prepare_inside = [&] {
+    if (options.inside == InsideMethod::RayGrid) ray_grid.emplace(mesh);
+    else side_of_mesh.emplace(mesh);
+  };
+  DelaunayTetrahedralization dt;
+  if (options.parallel) {
+    tbb::task_group setup;
+    setup.run(prepare_inside);
+    try {
+      dt = services::delaunay_tetrahedralize(points, {options.parallel});
+    } catch (...) {
+      setup.wait();
+      throw;
+    }
+    setup.wait();  // rethrows a setup failure
+  } else {
+    prepare_inside();
+    dt = services::delaunay_tetrahedralize(points, {false});
+  }
+  const std::size_t n = dt.cells.size();
+  if (n >= kNone) throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
+  info.points = dt.vertex_point.size();
+  info.cells = n;
+  info.seconds_delaunay = seconds_since(t0);
+
+  // 2. Which circumcentres are strictly inside the mesh.
+  t0 = Clock::now();
+  const std::vector<char> inside = ray_grid ? ray_grid->inside(dt.circumcentres, options.parallel)
+                                            : side_of_mesh->inside(dt.circumcentres);
+  info.seconds_inside = seconds_since(t0);
+
+  // 3. Compact: interior cells become vertices, in cell order.
+  t0 = Clock::now();
+  std::vector<Index> id(n, kNone);
+  Index count = 0;
+  for (std::size_t c = 0; c < n; ++c)
+    if (inside[c]) id[c] = count++;
+  info.interior = count;
+
+  std::vector<Node> nodes(count);
+  MedialComplex medial;
+  medial.centres.resize(count);
+  medial.radii.resize(count);
+  medial.generators.resize(count);
+  medial.generator_kind = options.generator_kind;
+  for_blocks(n, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const Index i = id[c];
+      if (i == kNone) continue;
+      Node& node = nodes[i];
+      node.corner = dt.cells[c];
+      for (int k = 0; k < 4; ++k) {
+        const std::int64_t nb = dt.neighbours[c][k];
+        node.neighbour[k] = nb == DelaunayTetrahedralization::kInfinite ? kNone : id[nb];
+      }
+      medial.centres[i] = dt.circumcentres[c];
+      medial.radii[i] = dt.circumradii[c];
+      std::array<Index, 4> g = node.corner;
+      std::sort(g.begin(), g.end());
+      medial.generators[i].assign(g.begin(), g.end());
+    }
+  });
+
+  // 4. Voronoi edges: facets between two interior cells, each once (from its lower vertex).
+  if (options.connectivity != Connectivity::None) {
+    medial.edges.reserve(2 * static_cast<std::size_t>(count));
+    for (Index i = 0; i < count; ++i) {
+      std::array<Index, 4> ends = nodes[i].neighbour;
+      std::sort(ends.begin(), ends.end());  // kNone last
+      for (Index j : ends)
+        if (j > i && j != kNone) medial.edges.push_back({i, j});
+    }
+  }
+  info.voronoi_edges = medial.edges.size();
+
+  // 5. Voronoi faces, fan-triangulated; their diagonals join the edges.
+  if (options.connectivity == Connectivity::Faces) {
+    std::vector<FaceBlock> blocks((count + kBlock - 1) / kBlock);
+    for_blocks(count, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+      faces_of_block(nodes, static_cast<Index>(begin), static_cast<Index>(end), blocks[b]);
+    });
+    std::size_t faces = 0, diagonals = 0;
+    for (const FaceBlock& b : blocks) faces += b.faces.size(), diagonals += b.diagonals.size();
+    medial.faces.reserve(faces);
+    medial.edges.reserve(medial.edges.size() + diagonals);
+    auto& polygon = medial.face_props.labels.add("polygon", 0);
+    polygon.reserve(faces);
+    int polygons = 0;
+    for (const FaceBlock& b : blocks) {
+      medial.faces.insert(medial.faces.end(), b.faces.begin(), b.faces.end());
+      medial.edges.insert(medial.edges.end(), b.diagonals.begin(), b.diagonals.end());
+      for (int p : b.polygon) polygon.push_back(polygons + p);
+      polygons += b.polygons;
+    }
+    info.voronoi_faces = static_cast<std::size_t>(polygons);
+    auto& diagonal = medial.edge_props.labels.add("fan_diagonal", medial.edges.size(), 0);
+    std::fill(diagonal.begin() + static_cast<std::ptrdiff_t>(info.voronoi_edges), diagonal.end(), 1);
+  }
+  info.seconds_complex = seconds_since(t0);
+  if (report) *report = info;
+  return medial;
+}
+
+}  // namespace medax::voronoi

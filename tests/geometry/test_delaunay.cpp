@@ -1,0 +1,181 @@
+// medax::services::delaunay_tetrahedralize against configurations with known answers, and the
+// invariants every Delaunay tetrahedralization has (empty spheres, symmetric adjacency, Euler
+// characteristic of a ball, determinism).
+#include <medax/services/delaunay.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+using namespace medax;
+using services::DelaunayTetrahedralization;
+using services::delaunay_tetrahedralize;
+
+namespace {
+
+double signed_volume(const std::vector<Vec3>& p, const std::array<Index, 4>& c) {
+  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]])) / 6.0;
+}
+
+std::vector<Vec3> random_points(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const auto u = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  std::vector<Vec3> p(n);
+  for (Vec3& x : p) x = Vec3(u(), u(), u());
+  return p;
+}
+
+/// Adjacency is symmetric, every finite cell is positively oriented, and every corner of a
+/// cell is at the circumradius from its circumcentre.
+void check_structure(const std::vector<Vec3>& points, const DelaunayTetrahedralization& dt) {
+  for (std::size_t c = 0; c < dt.cells.size(); ++c) {
+    CHECK(signed_volume(points, dt.cells[c]) > 0);
+    for (Index v : dt.cells[c])
+      CHECK((points[v] - dt.circumcentres[c]).norm() == Approx(dt.circumradii[c]).epsilon(1e-9));
+    for (int k = 0; k < 4; ++k) {
+      const std::int64_t n = dt.neighbours[c][k];
+      if (n == DelaunayTetrahedralization::kInfinite) continue;
+      REQUIRE(n >= 0);
+      REQUIRE(static_cast<std::size_t>(n) < dt.cells.size());
+      const auto& back = dt.neighbours[n];
+      CHECK(std::count(back.begin(), back.end(), static_cast<std::int64_t>(c)) == 1);
+      // The shared facet: the three corners other than k are corners of n.
+      for (int i = 0; i < 4; ++i)
+        if (i != k) CHECK(std::count(dt.cells[n].begin(), dt.cells[n].end(), dt.cells[c][i]) == 1);
+      CHECK(std::count(dt.cells[n].begin(), dt.cells[n].end(), dt.cells[c][k]) == 0);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Delaunay of one tetrahedron: one cell, known circumsphere, all neighbours infinite", "[geometry][delaunay]") {
+  const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const auto dt = delaunay_tetrahedralize(p);
+  REQUIRE(dt.cells.size() == 1);
+  std::array<Index, 4> corners = dt.cells[0];
+  std::sort(corners.begin(), corners.end());
+  CHECK(corners == std::array<Index, 4>{0, 1, 2, 3});
+  for (std::int64_t n : dt.neighbours[0]) CHECK(n == DelaunayTetrahedralization::kInfinite);
+  CHECK((dt.circumcentres[0] - Vec3(0.5, 0.5, 0.5)).norm() < 1e-15);
+  CHECK(dt.circumradii[0] == Approx(std::sqrt(3.0) / 2).epsilon(1e-15));
+  CHECK(dt.vertex_point == std::vector<Index>{0, 1, 2, 3});
+  check_structure(p, dt);
+}
+
+TEST_CASE("Delaunay of cube corners and centre: 12 cells around the centre", "[geometry][delaunay]") {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 8; ++i) p.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+  p.emplace_back(0, 0, 0);
+  const auto dt = delaunay_tetrahedralize(p);
+  // The corners are cospherical with the centre inside their sphere: the tetrahedralization is
+  // the centre joined to the two triangles of each square face.
+  REQUIRE(dt.cells.size() == 12);
+  double volume = 0;
+  std::map<std::array<long, 3>, int> per_face;
+  for (std::size_t c = 0; c < dt.cells.size(); ++c) {
+    CHECK(std::count(dt.cells[c].begin(), dt.cells[c].end(), Index{8}) == 1);
+    volume += signed_volume(p, dt.cells[c]);
+    // Circumcentre 1.5 along the face's outward axis, radius 1.5.
+    const Vec3& cc = dt.circumcentres[c];
+    CHECK(dt.circumradii[c] == Approx(1.5).epsilon(1e-12));
+    CHECK(cc.norm() == Approx(1.5).epsilon(1e-12));
+    CHECK(cc.cwiseAbs().maxCoeff() == Approx(1.5).epsilon(1e-12));
+    ++per_face[{std::lround(cc.x()), std::lround(cc.y()), std::lround(cc.z())}];
+  }
+  CHECK(volume == Approx(8.0).epsilon(1e-12));
+  CHECK(per_face.size() == 6);
+  for (const auto& [axis, n] : per_face) CHECK(n == 2);
+  check_structure(p, dt);
+}
+
+TEST_CASE("Delaunay merges duplicate points onto their lowest index", "[geometry][delaunay]") {
+  const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 0, 0}, {0, 0, 1}};
+  const auto dt = delaunay_tetrahedralize(p);
+  CHECK(dt.vertex_point == std::vector<Index>{0, 1, 2, 4});
+  REQUIRE(dt.point_vertex.size() == p.size());
+  CHECK(dt.point_vertex[3] == dt.point_vertex[1]);
+  CHECK(dt.point_vertex[5] == dt.point_vertex[0]);
+  CHECK(dt.point_vertex[6] == dt.point_vertex[4]);
+  for (std::size_t i = 0; i < p.size(); ++i) CHECK(p[dt.vertex_point[dt.point_vertex[i]]] == p[i]);
+  REQUIRE(dt.cells.size() == 1);
+  std::array<Index, 4> corners = dt.cells[0];
+  std::sort(corners.begin(), corners.end());
+  CHECK(corners == std::array<Index, 4>{0, 1, 2, 4});
+}
+
+TEST_CASE("Delaunay refuses points that do not span three dimensions", "[geometry][delaunay]") {
+  std::vector<Vec3> plane;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) plane.emplace_back(i, j, 0.5 * i - 0.25 * j);
+  CHECK_THROWS_AS(delaunay_tetrahedralize(plane), std::invalid_argument);
+  const std::vector<Vec3> line{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+  CHECK_THROWS_AS(delaunay_tetrahedralize(line), std::invalid_argument);
+  const std::vector<Vec3> same{{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}};
+  CHECK_THROWS_AS(delaunay_tetrahedralize(same), std::invalid_argument);
+  CHECK_THROWS_AS(delaunay_tetrahedralize({}), std::invalid_argument);
+}
+
+TEST_CASE("Delaunay of random points: empty spheres, a ball's Euler characteristic, determinism",
+          "[geometry][delaunay]") {
+  const auto p = random_points(400, 7);
+  const auto dt = delaunay_tetrahedralize(p);
+  REQUIRE(!dt.cells.empty());
+  check_structure(p, dt);
+  // Empty circumspheres (up to rounding): no point strictly inside any circumsphere.
+  std::size_t violations = 0;
+  for (std::size_t c = 0; c < dt.cells.size(); ++c)
+    for (const Vec3& q : p)
+      if ((q - dt.circumcentres[c]).norm() < dt.circumradii[c] * (1 - 1e-9)) ++violations;
+  CHECK(violations == 0);
+  // V - E + F - T = 1 for a triangulated ball; the hull facets have infinite neighbours.
+  std::set<std::pair<Index, Index>> edges;
+  std::set<std::array<Index, 3>> facets;
+  for (const auto& c : dt.cells) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) edges.insert(std::minmax(c[i], c[j]));
+    for (int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f;
+      for (int i = 0, n = 0; i < 4; ++i)
+        if (i != k) f[n++] = c[i];
+      std::sort(f.begin(), f.end());
+      facets.insert(f);
+    }
+  }
+  const long euler = static_cast<long>(dt.vertex_point.size()) - static_cast<long>(edges.size()) +
+                     static_cast<long>(facets.size()) - static_cast<long>(dt.cells.size());
+  CHECK(euler == 1);
+  // Same input, same output; sequential and parallel give the same arrays.
+  const auto again = delaunay_tetrahedralize(p);
+  const auto sequential = delaunay_tetrahedralize(p, {false});
+  for (const auto* other : {&again, &sequential}) {
+    CHECK(other->cells == dt.cells);
+    CHECK(other->neighbours == dt.neighbours);
+    CHECK(other->circumcentres == dt.circumcentres);
+    CHECK(other->circumradii == dt.circumradii);
+  }
+}
+
+TEST_CASE("Delaunay with more than 10k points (the former parallel path) is valid and deterministic",
+          "[geometry][delaunay]") {
+  const auto p = random_points(12000, 11);
+  const auto dt = delaunay_tetrahedralize(p);
+  const auto sequential = delaunay_tetrahedralize(p, {false});
+  CHECK(dt.cells == sequential.cells);
+  CHECK(dt.neighbours == sequential.neighbours);
+  double volume = 0;
+  std::size_t hull_facets = 0;
+  for (std::size_t c = 0; c < dt.cells.size(); ++c) {
+    volume += signed_volume(p, dt.cells[c]);
+    for (std::int64_t n : dt.neighbours[c]) hull_facets += n == DelaunayTetrahedralization::kInfinite;
+  }
+  // The hull of 12k uniform points fills most of the unit cube; the facets of a closed
+  // triangulated hull surface satisfy F = 2V_hull - 4 > 0.
+  CHECK(volume > 0.97);
+  CHECK(volume <= 1.0);
+  CHECK(hull_facets > 0);
+}

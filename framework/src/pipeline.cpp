@@ -179,6 +179,13 @@ class Validator {
     config.instance = std::shared_ptr<Stage>(registered->entry.create());
     config.instance->set_id(config.id);
     config.instance->configure(config.params);
+    try {
+      config.instance->check_params();
+    } catch (const std::exception& e) {
+      check_.error(params_node && params_node.IsMap() ? params_node : plugin_node,
+                   fmt::format("'{}': {}", *name, e.what()));
+      return std::nullopt;
+    }
     return config;
   }
 

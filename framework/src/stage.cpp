@@ -14,6 +14,7 @@ SimplificationStage::~SimplificationStage() = default;
 ConnectivityStage::~ConnectivityStage() = default;
 EvaluationStage::~EvaluationStage() = default;
 
+void Stage::check_params() const {}
 void Stage::prepare(const Scene&) const {}
 
 namespace {

@@ -131,7 +131,10 @@ void VmasStage::prepare(const Scene& scene) const {
     if (shape.samples.normals.size() != shape.samples.size())
       throw std::invalid_argument("vmas: the samples have no normals; VMAS needs oriented samples");
   }
-  parse_edits(params().text("edits"));  // reports a bad script before any work
+}
+
+void VmasStage::check_params() const {
+  parse_edits(params().text("edits"));  // a bad script is reported by `medax validate`
 }
 
 MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {

@@ -12,6 +12,7 @@ namespace medax::vmas {
 class VmasStage : public ExtractionStage {
  public:
   static StageInfo describe();
+  void check_params() const override;
   void prepare(const Scene& scene) const override;
   MedialComplex extract(const Shape& shape, Context& ctx) override;
 

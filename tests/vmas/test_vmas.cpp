@@ -527,13 +527,11 @@ TEST_CASE("vmas stage applies scripted edits in the input frame") {
   // An edit during the run: the schedule refills up to the target.
   mc = run_stage(stage, specs, shape, {{"target_spheres", 8LL}, {"edits", std::string("remove 1 0 0 after 25")}});
   CHECK(mc.num_vertices() == 8);
-  // A bad script is refused before any work.
+  // A bad script is refused when the pipeline is validated, before any work.
   ParamSet bad = default_params(specs);
   bad.set("edits", std::string("split 1 2"));
   stage.configure(bad);
-  Scene scene;
-  scene.shape = shape;
-  CHECK_THROWS_WITH(stage.prepare(scene), Catch::Contains("three coordinates"));
+  CHECK_THROWS_WITH(stage.check_params(), Catch::Contains("three coordinates"));
 }
 
 TEST_CASE("vmas stages on an oriented point cloud") {

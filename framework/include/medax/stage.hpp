@@ -41,6 +41,10 @@ class Stage {
   void set_id(std::string id) { id_ = std::move(id); }
   const std::string& id() const { return id_; }
 
+  /// Checks what the declarations cannot (a script's syntax, two parameters that exclude each
+  /// other): called when the pipeline is validated, before anything runs. Throw
+  /// std::invalid_argument saying what to do. Default: nothing to check.
+  virtual void check_params() const;
   /// Checks the parameters against the data before any work (throw std::invalid_argument with
   /// what to do). Default: nothing to check.
   virtual void prepare(const Scene& scene) const;

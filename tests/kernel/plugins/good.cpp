@@ -70,6 +70,11 @@ class TestRadiusField : public SignificanceStage {
             {ParamSpec::real("factor", 2.0, "multiplier").at_least(0),
              ParamSpec::text("field", "radius_times", "name of the vertex field")}};
   }
+  void check_params() const override {
+    const std::string& field = params().text("field");
+    if (field.empty() || field.find(' ') != std::string::npos)
+      throw std::invalid_argument("`field` must be one word, e.g. radius_times");
+  }
   void measure(const Shape&, MedialComplex& medial, Context&) override {
     auto& column = medial.vertex_props.fields.add(params().text("field"), medial.num_vertices());
     for (std::size_t i = 0; i < column.size(); ++i) column[i] = params().real("factor") * medial.radii[i];

@@ -74,6 +74,7 @@ class Converter {
     handle_.assign(input.vertices.size(), Dt::Vertex_handle());
     for (auto v = dt_.finite_vertices_begin(); v != dt_.finite_vertices_end(); ++v) handle_[v->info()] = v;
     max_insertions_ = static_cast<std::size_t>(options.max_insertions_factor * double(input.vertices.size())) + 1000;
+    max_lawson_flips_ = 100 * input.faces.size() + 10000;
   }
 
   bool is_dt_edge(VD a, VD b) const {
@@ -154,8 +155,13 @@ class Converter {
       ++changes;
       if (options_.flips && try_flip(h)) {
         ++report_.flips;
-        // The four edges of the quad may have lost or gained their Delaunay status? No: the DT
-        // did not change. Only the new edge is new, and it is Delaunay by construction.
+        // The DT did not change, but the four edges of the quad have new opposite vertices (they
+        // may have become flippable), and a Lawson flip's new edge may itself not be Delaunay.
+        push(h);
+        push(mesh_.next(h));
+        push(mesh_.prev(h));
+        push(mesh_.next(mesh_.opposite(h)));
+        push(mesh_.prev(mesh_.opposite(h)));
         continue;
       }
       const VD v = split_edge(h);
@@ -170,8 +176,15 @@ class Converter {
 
   static Vec3 normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
 
-  /// Flips the edge of h when the flip keeps the surface (small dihedral angle, no fold, no
-  /// existing edge) and the new edge is a DT edge.
+  static double angle(const Vec3& apex, const Vec3& p, const Vec3& q) {
+    const Vec3 u = p - apex, v = q - apex;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  }
+
+  /// Flips the non-Delaunay edge of h when the flip keeps the surface (small dihedral angle, no
+  /// fold, no existing edge, no vertex left with two edges) and either the new edge is a DT edge
+  /// or the edge is not locally Delaunay on the surface (opposite angles summing to more than the
+  /// new edge's: Lawson's flip, which is how a flat region reaches its Delaunay triangulation).
   bool try_flip(HD h) {
     const HD o = mesh_.opposite(h);
     const VD a = mesh_.source(h), b = mesh_.target(h);
@@ -179,7 +192,6 @@ class Converter {
     if (c == d) return false;
     if (CGAL::degree(a, mesh_) <= 3 || CGAL::degree(b, mesh_) <= 3) return false;
     if (CGAL::halfedge(c, d, mesh_).second) return false;
-    if (!is_dt_edge(c, d)) return false;
     const Vec3 pa = to_vec(mesh_.point(a)), pb = to_vec(mesh_.point(b)), pc = to_vec(mesh_.point(c)),
                pd = to_vec(mesh_.point(d));
     const Vec3 n1 = normal(pa, pb, pc), n2 = normal(pb, pa, pd);
@@ -192,6 +204,12 @@ class Converter {
     const Vec3 m1 = normal(pc, pa, pd), m2 = normal(pd, pb, pc);
     if (m1.dot(avg) <= 0 || m2.dot(avg) <= 0) return false;
     if (m1.norm() <= 1e-12 * (l1 + l2) || m2.norm() <= 1e-12 * (l1 + l2)) return false;
+    const bool delaunay_target = is_dt_edge(c, d);
+    if (!delaunay_target) {
+      const double before = angle(pc, pa, pb) + angle(pd, pa, pb);  // opposite angles of ab
+      const double after = angle(pa, pc, pd) + angle(pb, pc, pd);   // opposite angles of cd
+      if (before <= after + 1e-12 || ++lawson_flips_ > max_lawson_flips_) return false;
+    }
     CGAL::Euler::flip_edge(h, mesh_);
     return true;
   }
@@ -267,6 +285,7 @@ class Converter {
   std::vector<Dt::Vertex_handle> handle_;
   std::size_t original_count_ = 0;
   std::size_t insertions_ = 0, max_insertions_ = 0;
+  std::size_t lawson_flips_ = 0, max_lawson_flips_ = 0;
 };
 
 }  // namespace

@@ -273,9 +273,33 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
 
   out.seconds_contract = std::chrono::duration<double>(Clock::now() - t1).count();
   // ---- output --------------------------------------------------------------------------------
+  // Coarsening: a triangle of the input whose fan triangles all survive is written as itself
+  // (or as a fan from its centre over the points its sides must keep), and a point on an edge
+  // whose triangles all survive whole is dropped: the same disk, the same topology, far fewer
+  // triangles. Everything else is written as the refined cells that survived.
+  const TriangleComplex& cx = *g.cx;
+  const std::size_t nmt = cx.num_triangles();
+  std::vector<Index> face_first_tri(sub.num_faces() + 1, 0);
+  for (std::size_t t = 0; t < nt; ++t) ++face_first_tri[tri_face[t] + 1];
+  std::partial_sum(face_first_tri.begin(), face_first_tri.end(), face_first_tri.begin());
+  std::vector<char> whole(nmt, 0);
+  if (options.coarsen)
+    for (std::size_t T = 0; T < nmt; ++T) {
+      bool all = true;
+      for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1] && all; ++f)
+        for (Index k = face_first_tri[f]; k < face_first_tri[f + 1] && all; ++k) all = tri_alive[k];
+      whole[T] = all;
+    }
+  std::vector<char> coarse_edge(cx.num_edges(), 0);
+  for (std::size_t e = 0; e < cx.num_edges(); ++e) {
+    bool all = true;
+    for (Index i = cx.edge_tri_begin[e]; i < cx.edge_tri_begin[e + 1] && all; ++i) all = whole[cx.edge_tris[i]];
+    coarse_edge[e] = all;
+  }
+
   std::vector<Index> local(np, kNone);
-  for (std::size_t p = 0; p < np; ++p) {
-    if (!vertex_alive[p]) continue;
+  auto point = [&](Index p) {
+    if (local[p] != kNone) return local[p];
     local[p] = static_cast<Index>(out.points.size());
     out.points.push_back(sub.point[p]);
     out.radius.push_back(sub.point_radius[p]);
@@ -284,18 +308,103 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     out.et_c.push_back(et_c[p]);
     out.kind.push_back(p < sub.num_nodes ? (g.is_vertex(static_cast<Index>(p)) ? 0 : 1)
                                          : p < sub.num_nodes + sub.num_segments ? 2 : 3);
+    return local[p];
+  };
+  // Vertices left without edges (isolated input vertices, the point a component collapsed to).
+  for (Index p = 0; p < np; ++p)
+    if (vertex_alive[p] && vertex_count[p] == 0) point(p);
+  ring.clear();
+  for (std::size_t T = 0; T < nmt; ++T) {
+    if (!whole[T]) {
+      for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1]; ++f)
+        for (Index k = face_first_tri[f]; k < face_first_tri[f + 1]; ++k)
+          if (tri_alive[k]) {
+            out.faces.push_back({point(tris[k][0]), point(tris[k][1]), point(tris[k][2])});
+            out.face_priority.push_back(face_prio[f]);
+          }
+      continue;
+    }
+    // Area-weighted priority of the whole triangle.
+    double area = 0, weighted = 0;
+    bool inf = false;
+    for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1]; ++f)
+      for (Index k = face_first_tri[f]; k < face_first_tri[f + 1]; ++k) {
+        const Vec3 &a = sub.point[tris[k][0]], &b = sub.point[tris[k][1]], &c = sub.point[tris[k][2]];
+        const double A = 0.5 * (b - a).cross(c - a).norm();
+        if (std::isinf(face_prio[f])) inf = true;
+        else area += A, weighted += A * face_prio[f];
+      }
+    const double prio = inf ? kInf : area > 0 ? weighted / area : face_prio[sub.tri_face_begin[T]];
+    ring.clear();
+    for (int j = 0; j < 3; ++j) {
+      ring.push_back(cx.triangles[T][j]);
+      const Index e = cx.tri_edges[T][j];
+      if (coarse_edge[e]) continue;
+      const Index n = g.samples_on(e);
+      const bool fwd = cx.side_forward(static_cast<Index>(T), j);
+      for (Index k = 0; k <= n; ++k) {
+        if (k > 0) ring.push_back(g.side_node(static_cast<Index>(T), j, k));
+        const Index s = sub.segment_begin[e] + (fwd ? k : n - k);
+        if (sub.segment_used[s]) ring.push_back(sub.segment_point(s));
+      }
+    }
+    if (ring.size() == 3) {
+      out.faces.push_back({point(ring[0]), point(ring[1]), point(ring[2])});
+      out.face_priority.push_back(prio);
+      ++out.coarse_triangles;
+      continue;
+    }
+    // Fan from the triangle's centre (attributes: the mean of its corners').
+    const Index centre = static_cast<Index>(out.points.size());
+    Vec3 c = Vec3::Zero();
+    double r = 0, b = 0;
+    for (Index v : cx.triangles[T]) c += sub.point[v], r += sub.point_radius[v], b += sub.point_bt[v];
+    out.points.push_back(c / 3);
+    out.radius.push_back(r / 3);
+    out.bt.push_back(b / 3);
+    out.et.push_back(std::isinf(b) ? kInf : (b - r) / 3);
+    out.et_c.push_back(std::numeric_limits<double>::quiet_NaN());
+    out.kind.push_back(4);
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      out.faces.push_back({centre, point(ring[i]), point(ring[(i + 1) % ring.size()])});
+      out.face_priority.push_back(prio);
+    }
+    ++out.coarse_triangles;
   }
-  for (std::size_t e = 0; e < ne; ++e)
-    if (edge_alive[e]) {
-      out.edges.push_back({local[edges[e][0]], local[edges[e][1]]});
-      out.edge_curve.push_back(edge_curve[e]);
-      out.edge_priority.push_back(edge_prio[e]);
+  // Edges: the sides of the written triangles and the surviving edges that bound no triangle.
+  struct EdgeOut {
+    std::uint64_t key;
+    char curve;
+    double prio;
+  };
+  std::vector<EdgeOut> eo;
+  for (const Tri& t : out.faces)
+    for (int j = 0; j < 3; ++j) eo.push_back({key_of(t[j], t[(j + 1) % 3]), 0, kNegInf});
+  std::vector<EdgeOut> curve_sides;  // surviving curve edges, to label the sides that are curve edges
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (!edge_alive[e]) continue;
+    if (edge_count[e] == 0) {
+      eo.push_back({key_of(point(edges[e][0]), point(edges[e][1])), edge_curve[e], edge_prio[e]});
+    } else if (edge_curve[e] && local[edges[e][0]] != kNone && local[edges[e][1]] != kNone) {
+      curve_sides.push_back({key_of(local[edges[e][0]], local[edges[e][1]]), 1, edge_prio[e]});
     }
-  for (std::size_t t = 0; t < nt; ++t)
-    if (tri_alive[t]) {
-      out.faces.push_back({local[tris[t][0]], local[tris[t][1]], local[tris[t][2]]});
-      out.face_priority.push_back(face_prio[tri_face[t]]);
+  }
+  auto by_key = [](const EdgeOut& a, const EdgeOut& b) { return a.key < b.key; };
+  std::sort(curve_sides.begin(), curve_sides.end(), by_key);
+  std::sort(eo.begin(), eo.end(), [](const EdgeOut& a, const EdgeOut& b) {
+    return a.key < b.key || (a.key == b.key && a.curve > b.curve);
+  });
+  for (std::size_t i = 0; i < eo.size(); ++i) {
+    if (i > 0 && eo[i].key == eo[i - 1].key) continue;
+    EdgeOut e = eo[i];
+    if (!e.curve) {
+      const auto it = std::lower_bound(curve_sides.begin(), curve_sides.end(), e, by_key);
+      if (it != curve_sides.end() && it->key == e.key) e = *it;
     }
+    out.edges.push_back({static_cast<Index>(e.key >> 32), static_cast<Index>(e.key & 0xffffffffu)});
+    out.edge_curve.push_back(e.curve);
+    out.edge_priority.push_back(e.prio);
+  }
   return out;
 }
 

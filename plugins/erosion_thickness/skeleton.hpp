@@ -7,6 +7,9 @@
 // of its fan triangles, which share its priority. Edges of the input that bound no triangle and
 // isolated vertices are kept as they are (priority -inf; they collapse like any free cell).
 //
+// Output: input triangles that survive whole are written as themselves, or as a fan from their
+// centre when a neighbour needs the points on their sides; the rest as the refined cells.
+//
 // Priorities: a fan triangle gets the mean ET_M over the graph-node corners of its face; an edge
 // of C the mean ET_C of its ends; every other cell -inf. Protected: triangles with priority >
 // theta2 and curve edges with priority > theta1, minus connected components (edge-adjacent
@@ -29,12 +32,13 @@ struct SkeletonOptions {
   double theta1 = 0.04;   ///< absolute ET_C threshold for curves
   double phi2 = 0.0005;   ///< absolute area below which protected sheet components are dropped
   double phi1 = 0.0;      ///< absolute length below which protected curve components are dropped
+  bool coarsen = true;    ///< write input triangles that survive whole as themselves (see compute_skeleton)
 };
 
 struct Skeleton {
   std::vector<Vec3> points;
   std::vector<double> radius, bt, et, et_c;  ///< et_c is NaN off the medial curves
-  std::vector<int> kind;                     ///< 0 vertex, 1 edge sample, 2 segment dual, 3 face dual
+  std::vector<int> kind;  ///< 0 vertex, 1 edge sample, 2 segment dual, 3 face dual, 4 centre of a coarsened triangle
   std::vector<Segment> edges;                ///< every remaining edge (triangle sides included)
   std::vector<int> edge_curve;               ///< 1 for edges of the medial curves
   std::vector<double> edge_priority;         ///< ET_C mean for curve edges, -inf otherwise
@@ -45,6 +49,7 @@ struct Skeleton {
   std::size_t refined_vertices = 0, refined_edges = 0, refined_faces = 0;
   std::size_t protected_faces = 0, protected_curve_edges = 0;
   std::size_t dropped_sheet_components = 0, dropped_curve_components = 0;
+  std::size_t coarse_triangles = 0;  ///< input triangles written whole (as one triangle or a fan)
   double seconds_refine = 0, seconds_contract = 0;
 };
 

@@ -176,9 +176,16 @@ TEST_CASE("Skeleton keeps every protected cell and the topology") {
       o.theta2 = theta2;
       o.theta1 = theta1;
       o.phi2 = 0;
+      o.coarsen = false;  // the refined cells, to count the protected ones
       Skeleton sk;
       const MedialComplex s = skeleton_of(book, 0.01, o, &sk);
       require_same(complex_topology(book), complex_topology(s));
+      o.coarsen = true;
+      Skeleton coarse;
+      const MedialComplex c = skeleton_of(book, 0.01, o, &coarse);
+      require_same(complex_topology(book), complex_topology(c));
+      CHECK(c.faces.size() <= s.faces.size());
+      if (theta2 == 0.02) CHECK(coarse.coarse_triangles > 0);
       std::size_t kept = 0;
       for (double p : sk.face_priority) kept += p > theta2;
       CHECK(kept == sk.protected_faces);

@@ -15,15 +15,6 @@
 
 namespace medax::durix {
 
-namespace {
-
-Vec3 facet_centroid(const Dual& d, const Facet& f) {
-  const auto v = d.facet_vertices(f);
-  return (d.point(v[0]) + d.point(v[1]) + d.point(v[2])) / 3.0;
-}
-
-}  // namespace
-
 CarveOutcome Engine::carve(const std::vector<CellId>& path, const std::vector<CellId>& seeds, bool stop_at_labels,
                            bool test_coverage) {
   if (test_coverage && oracle.epsilon() <= 0) return CarveOutcome::Significant;
@@ -63,14 +54,12 @@ CarveOutcome Engine::carve(const std::vector<CellId>& path, const std::vector<Ce
         vertex_mark[v] = vertex_stamp;
         if (!covered(v)) return CarveOutcome::Significant;
       }
+    if (const auto it = attached.find(c); it != attached.end())
+      for (Index v : it->second)
+        if (!covered(v)) return CarveOutcome::Significant;
     for (int k = 0; k < 4; ++k) {
       const CellId n = d.neighbour(c, k);
-      if (!d.solid(n)) {
-        const auto it = attached.find(d.facet(c, k));
-        if (it != attached.end())
-          for (Index v : it->second)
-            if (!covered(v)) return CarveOutcome::Significant;
-      } else if (cell_mark[n] != path_stamp && cell_mark[n] != region_stamp) {
+      if (d.solid(n) && cell_mark[n] != path_stamp && cell_mark[n] != region_stamp) {
         cell_mark[n] = region_stamp;
         region.push_back(n);
       }
@@ -101,10 +90,6 @@ CarveOutcome Engine::carve(const std::vector<CellId>& path, const std::vector<Ce
     return chi;
   };
   const long long chi_before = euler();
-  // Surface facets that disappear (C), with the vertices attached to them.
-  std::vector<Facet> carved_faces;
-  for (const Facet& f : facets)
-    if (d.is_surface_facet(f)) carved_faces.push_back(f);
 
   static const bool debug = std::getenv("MEDAX_DURIX_DEBUG") != nullptr;
   if (debug && d.verify_counters()) throw std::logic_error("counters broken before carve");
@@ -168,41 +153,37 @@ CarveOutcome Engine::carve(const std::vector<CellId>& path, const std::vector<Ce
   }
   if (options.preserve_topology && euler() != chi_before) return rollback(CarveOutcome::TopologyChange);
 
-  // Commit: the closing facets D, and attachments of the vertices that left the surface.
-  std::vector<Facet> closing;
+  // Commit. The region must close against kept cells (D not empty).
+  bool closes = false;
   for (CellId c : region)
-    for (int k = 0; k < 4; ++k)
-      if (d.solid(d.neighbour(c, k))) closing.push_back(d.facet(c, k));
-  if (closing.empty()) return rollback(CarveOutcome::NotSeparated);
-  unique(closing);
+    for (int k = 0; k < 4 && !closes; ++k) closes = d.solid(d.neighbour(c, k));
+  if (!closes) return rollback(CarveOutcome::NotSeparated);
+  // Vertices that left the surface, and those whose witness was carved, get a new witness: the
+  // path ball that covers them best.
   std::vector<Index> to_attach;
   for (Index v : verts)
     if (!d.on_surface(v)) {
       to_attach.push_back(v);
       ++report.removed_vertices;
     }
-  for (const Facet& f : carved_faces) {
-    const auto it = attached.find(f);
+  for (CellId c : region) {
+    const auto it = attached.find(c);
     if (it == attached.end()) continue;
     to_attach.insert(to_attach.end(), it->second.begin(), it->second.end());
     attached.erase(it);
   }
-  std::vector<Vec3> centroids;
-  centroids.reserve(closing.size());
-  for (const Facet& f : closing) centroids.push_back(facet_centroid(d, f));
   for (Index v : to_attach) {
     std::size_t best = 0;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < closing.size(); ++i) {
-      const double dist = (centroids[i] - d.point(v)).squaredNorm();
-      if (dist < best_d) {
-        best_d = dist;
+    double best_excess = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < balls.size(); ++i) {
+      const double excess = (d.point(v) - balls[i].centre).norm() - balls[i].radius;
+      if (excess < best_excess) {
+        best_excess = excess;
         best = i;
       }
     }
-    const Facet& f = closing[best];
-    attached[f].push_back(v);
-    witness[v] = d.solid(f.cell) ? f.cell : d.other_cell(f);
+    attached[path[best]].push_back(v);
+    witness[v] = path[best];
   }
   return CarveOutcome::Removed;
 }

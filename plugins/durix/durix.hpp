@@ -69,7 +69,8 @@ struct DurixReport {
   std::size_t surface_vertices = 0, surface_faces = 0;
   double epsilon = 0;
   /// Over removed input vertices: min over the witness node and the 16 nodes nearest to it of
-  /// (‖v − c‖ − r). An upper bound of the distance to the union of the output balls.
+  /// (‖v − c‖ − r): an upper bound of the distance to the union of the output balls, ≤ ε by
+  /// construction (each removed vertex keeps a witness ball covering it within ε).
   double max_removed_excess = 0;
   double seconds_dual = 0, seconds_propagation = 0, seconds_problematic = 0, seconds_output = 0;
 };

@@ -85,10 +85,12 @@ class Engine {
   DurixReport& report;
   const CancelFn& check_cancelled;
   int next_label = 0;
-  /// Removed input vertices attached to the surface facet closest to them (notes §3.6): they are
-  /// tested again when that facet is carved away.
-  std::map<Facet, std::vector<Index>> attached;
-  std::vector<CellId> witness;  ///< per vertex: the kept cell it was attached to (kNoId: none)
+  /// Removed input vertices attached to a witness cell whose ball covers them within ε (notes
+  /// §3.6 and §7.9, witness nodes): when the witness is carved away, they are tested again
+  /// against the new path's balls and attached to one of them. So every removed vertex stays
+  /// within ε of an output ball.
+  std::map<CellId, std::vector<Index>> attached;
+  std::vector<CellId> witness;  ///< per vertex: its witness cell (kNoId: not removed)
   /// Per component: the preferred seed cell (largest ball whose centre is inside the input).
   std::vector<CellId> preferred_seed;
 

@@ -211,19 +211,15 @@ void build_output(const Engine& engine, const SurfaceMesh& mesh, DurixResult& re
   report.surface_faces = result.surface.faces.size();
 
   // Segmentation by voting (notes §1.4): a node whose faces (or curve edges) carry one label
-  // votes it onto its 4 vertices and onto the removed vertices attached to its surface faces.
+  // votes it onto its 4 vertices and onto the removed vertices it witnesses.
   std::vector<std::map<int, int>> votes(np);
   for (CellId c = 0; c < d.num_cells(); ++c) {
     if (!d.solid(c)) continue;
     const int s = node_sheet[node[c]];
     if (s < 0) continue;
     for (Index v : d.cell(c)) ++votes[v][s];
-    for (int k = 0; k < 4; ++k) {
-      if (d.solid(d.neighbour(c, k))) continue;
-      const auto it = engine.attached.find(d.facet(c, k));
-      if (it == engine.attached.end()) continue;
+    if (const auto it = engine.attached.find(c); it != engine.attached.end())
       for (Index v : it->second) ++votes[v][s];
-    }
   }
   result.vertex_sheet.assign(np, -1);
   for (Index v = 0; v < np; ++v) {

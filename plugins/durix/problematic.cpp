@@ -49,17 +49,25 @@ void Engine::split_problematic() {
     }
     return out;
   };
-  const auto relabel = [&](int label) {
-    std::vector<EdgeId> faces;
-    for (EdgeId e = 0; e < d.num_edges(); ++e)
-      if (d.volumetric(e) && d.label(e) == label) faces.push_back(e);
-    for (EdgeId e : faces) d.set_label(e, -1);
-    bool first = true;
-    for (EdgeId e : faces)
-      if (d.label(e) < 0) {
-        label_sheet(e, first ? label : next_label++, nullptr);
-        first = false;
-      }
+  // Relabels the sheets `labels` (each may fall apart after forcing edges): one scan of the faces.
+  const auto relabel = [&](const std::vector<int>& labels) {
+    if (labels.empty()) return;
+    std::map<int, std::vector<EdgeId>> faces;
+    for (int l : labels) faces[l];
+    for (EdgeId e = 0; e < d.num_edges(); ++e) {
+      if (!d.volumetric(e)) continue;
+      const auto it = faces.find(d.label(e));
+      if (it != faces.end()) it->second.push_back(e);
+    }
+    for (auto& [label, list] : faces) {
+      for (EdgeId e : list) d.set_label(e, -1);
+      bool first = true;
+      for (EdgeId e : list)
+        if (d.label(e) < 0) {
+          label_sheet(e, first ? label : next_label++, nullptr);
+          first = false;
+        }
+    }
   };
   // Regular edges of sheet `label` usable by the cut: degree 2, not forced, both faces on it.
   const auto regular_in = [&](const Facet& t, int label) {
@@ -142,8 +150,10 @@ void Engine::split_problematic() {
         }
         progress = true;
       }
-      relabel(label);
     }
+    std::vector<int> labels;
+    for (const auto& entry : by_label) labels.push_back(entry.first);
+    relabel(labels);
     const std::vector<Facet> again = collect();
     if (!progress || again.size() >= found.size()) {
       found = again;
@@ -151,21 +161,31 @@ void Engine::split_problematic() {
     }
     found = again;
   }
-  // Fallback: isolate the face with the largest id at each remaining problematic edge.
-  for (int round = 0; round < 1000 && !found.empty(); ++round) {
-    const Facet f = found.front();
-    EdgeId faces[3];
-    facet_faces(d, f, faces);
-    const EdgeId lone = std::max({faces[0], faces[1], faces[2]});
-    const int label = d.label(lone);
-    std::vector<Facet> ring;
-    d.ring_facets(lone, ring);
-    for (const Facet& t : ring)
-      if (d.degree(t) == 2 && !d.forced(t)) {
-        d.set_forced(t, true);
-        ++report.forced_edges;
-      }
-    relabel(label);
+  // Fallback: isolate the face with the largest id at each remaining problematic edge (all
+  // edges of a round at once, then one relabelling).
+  for (int round = 0; round < 100 && !found.empty(); ++round) {
+    if (check_cancelled) check_cancelled();
+    std::vector<int> labels;
+    for (const Facet& f : found) {
+      if (!problematic(f)) continue;
+      EdgeId faces[3];
+      facet_faces(d, f, faces);
+      const EdgeId lone = std::max({faces[0], faces[1], faces[2]});
+      labels.push_back(d.label(lone));
+      std::vector<Facet> ring;
+      d.ring_facets(lone, ring);
+      for (const Facet& t : ring)
+        if (d.degree(t) == 2 && !d.forced(t)) {
+          d.set_forced(t, true);
+          ++report.forced_edges;
+        }
+      // Give the lone face its own label now so that the next problematic edge of this round
+      // sees the split.
+      d.set_label(lone, next_label++);
+    }
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    relabel(labels);
     found = collect();
   }
   report.problematic_left = found.size();

@@ -169,6 +169,31 @@ RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_tri
     for (std::size_t f = r.begin(); f != r.end(); ++f)
       ranges[f] = {iy(boxes[f].ymin), iy(boxes[f].ymax), iz(boxes[f].zmin), iz(boxes[f].zmax)};
   });
+  // Renumber the triangles by the first column they cover (counting sort), so that queries,
+  // which run column after column, read the triangles in memory order.
+  {
+    std::vector<std::uint32_t> start(columns + 1, 0);
+    for (std::size_t f = 0; f < nf; ++f) ++start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2] + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<Index> order(nf);
+    for (std::size_t f = 0; f < nf; ++f)
+      order[start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2]]++] = static_cast<Index>(f);
+    std::vector<Triangle> triangles(nf);
+    std::vector<Entry> sorted_boxes(nf);
+    std::vector<float> sorted_xmin(nf);
+    std::vector<std::array<int, 4>> sorted_ranges(nf);
+    for (std::size_t k = 0; k < nf; ++k) {
+      triangles[k] = triangles_[order[k]];
+      sorted_boxes[k] = boxes[order[k]];
+      sorted_boxes[k].triangle = static_cast<Index>(k);
+      sorted_xmin[k] = box_xmin[order[k]];
+      sorted_ranges[k] = ranges[order[k]];
+    }
+    triangles_.swap(triangles);
+    boxes.swap(sorted_boxes);
+    box_xmin.swap(sorted_xmin);
+    ranges.swap(sorted_ranges);
+  }
   for (std::size_t f = 0; f < nf; ++f)
     for (int y = ranges[f][0]; y <= ranges[f][1]; ++y)
       for (int z = ranges[f][2]; z <= ranges[f][3]; ++z) ++offsets_[static_cast<std::size_t>(y) * nz_ + z + 1];
@@ -256,20 +281,28 @@ bool RayParityInside::parity(const Vec3& q, std::size_t column) const {
 
 std::vector<char> RayParityInside::inside(const std::vector<Vec3>& points, bool parallel) const {
   // Queries grouped by column (counting sort), so that each column's entries are read once
-  // from memory rather than once per query.
+  // from memory rather than once per query. Points outside the bounding box stay outside.
+  constexpr std::uint32_t kOutside = ~std::uint32_t{0};
+  if (points.size() >= kOutside) throw std::invalid_argument("inside test: too many query points");
   std::vector<char> out(points.size(), 0);
-  std::vector<std::size_t> columns(points.size());
+  std::vector<std::uint32_t> columns(points.size());
+  const auto locate = [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t c = column(points[i]);
+      columns[i] = c == kNoColumn ? kOutside : static_cast<std::uint32_t>(c);
+    }
+  };
+  if (parallel) tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), locate);
+  else locate(tbb::blocked_range<std::size_t>(0, points.size()));
   std::vector<std::uint32_t> start(num_columns() + 1, 0);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    columns[i] = column(points[i]);
-    if (columns[i] != kNoColumn) ++start[columns[i] + 1];
-  }
+  for (const std::uint32_t c : columns)
+    if (c != kOutside) ++start[c + 1];
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<std::uint32_t> order(start.back());
   {
     std::vector<std::uint32_t> cursor(start.begin(), start.end() - 1);
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (columns[i] != kNoColumn) order[cursor[columns[i]]++] = static_cast<std::uint32_t>(i);
+      if (columns[i] != kOutside) order[cursor[columns[i]]++] = static_cast<std::uint32_t>(i);
   }
   const auto body = [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) out[order[k]] = inside_column(points[order[k]], columns[order[k]]);

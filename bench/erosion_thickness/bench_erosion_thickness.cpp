@@ -104,19 +104,25 @@ void BM_Skeleton(benchmark::State& state) {
   o.theta1 = 0.04 * in.length;
   o.phi2 = 0.0005 * in.length * in.length;
   std::size_t refined = 0, faces = 0;
-  double refine = 0, contract = 0;
+  Skeleton last;
   for (auto _ : state) {
     const Subdivision sub = build_subdivision(run->graph, run->burn);
     const Skeleton sk = compute_skeleton(run->graph, sub, run->loose_edges, o);
     refined = sk.refined_faces;
-    refine = sk.seconds_refine;
-    contract = sk.seconds_contract;
+    last.seconds_refine = sk.seconds_refine;
+    last.seconds_fans = sk.seconds_fans;
+    last.seconds_protect = sk.seconds_protect;
+    last.seconds_contract = sk.seconds_contract;
+    last.seconds_output = sk.seconds_output;
     faces = sk.faces.size();
   }
   state.counters["refined_triangles"] = double(refined);
   state.counters["skeleton_triangles"] = double(faces);
-  state.counters["s_refine"] = refine;
-  state.counters["s_contract"] = contract;
+  state.counters["s_fans"] = last.seconds_fans;
+  state.counters["s_edges"] = last.seconds_refine - last.seconds_fans;
+  state.counters["s_protect"] = last.seconds_protect;
+  state.counters["s_collapse"] = last.seconds_contract - last.seconds_protect;
+  state.counters["s_output"] = last.seconds_output;
 }
 BENCHMARK(BM_Skeleton)->Unit(benchmark::kMillisecond)->Iterations(1);
 

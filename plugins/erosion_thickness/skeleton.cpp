@@ -83,6 +83,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     face_prio[f] = inf ? kInf : sum / m;
   }
 
+  const double t_fans = std::chrono::duration<double>(Clock::now() - t0).count();
   // ---- K: edges --------------------------------------------------------------------------------
   struct Rec {
     std::uint64_t key;
@@ -150,6 +151,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
   out.refined_edges = ne;
 
   out.seconds_refine = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.seconds_fans = t_fans;
   const auto t1 = Clock::now();
   // ---- protection ----------------------------------------------------------------------------
   std::vector<char> tri_protected(nt, 0);
@@ -212,6 +214,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     if (kept_edge[e]) kept_vertex[edges[e][0]] = kept_vertex[edges[e][1]] = 1;
   }
 
+  const double t_protect = std::chrono::duration<double>(Clock::now() - t1).count();
   // ---- contraction ---------------------------------------------------------------------------
   std::vector<char> tri_alive(nt, 1), edge_alive(ne, 1), vertex_alive(np, 0);
   for (Index v = 0; v < V; ++v) vertex_alive[v] = 1;
@@ -272,6 +275,8 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
   }
 
   out.seconds_contract = std::chrono::duration<double>(Clock::now() - t1).count();
+  out.seconds_protect = t_protect;
+  const auto t2 = Clock::now();
   // ---- output --------------------------------------------------------------------------------
   // Coarsening: a triangle of the input whose fan triangles all survive is written as itself
   // (or as a fan from its centre over the points its sides must keep), and a point on an edge
@@ -405,6 +410,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     out.edge_curve.push_back(e.curve);
     out.edge_priority.push_back(e.prio);
   }
+  out.seconds_output = std::chrono::duration<double>(Clock::now() - t2).count();
   return out;
 }
 

@@ -98,9 +98,10 @@ void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, C
   ctx.info(fmt::format("et in [{:g}, {:g}]; {} vertices with et = inf; {} edges where |dR| > length", lo, hi, infinite,
                        steep));
   if (negative > 0)
-    ctx.warn(fmt::format("{} of {} vertices ({:.2f}%) have ET < 0: the radius varies faster than distance along {} "
-                         "edges (the paper's g > 1), so fire reaches them before their own ignition time",
-                         negative, et.size(), 100.0 * negative / std::max<std::size_t>(1, et.size()), steep));
+    ctx.warn(fmt::format("{} of {} vertices ({:.2f}%, lowest ET {:g}) have ET < 0: the interpolated radius varies "
+                         "faster than distance along some arcs ({} edges, and arcs across skinny triangles; the "
+                         "paper's g > 1), so fire reaches them before their own ignition time",
+                         negative, et.size(), 100.0 * negative / std::max<std::size_t>(1, et.size()), lo, steep));
   if (params().boolean("write_forest")) {
     const std::string name = (id().empty() ? std::string("erosion_thickness") : id()) + "_burn_forest.obj";
     ctx.write_output(name, [&run](std::ostream& out) {

@@ -219,8 +219,8 @@ class Converter {
   Dt::Vertex_handle insert(const Point& p, std::uint32_t id, Dt::Cell_handle hint) {
     if (++insertions_ > max_insertions_)
       throw std::runtime_error("gave up after inserting " + std::to_string(max_insertions_) +
-                               " points (the conversion does not converge on this mesh; it may be self-intersecting "
-                               "or have nearly coincident sheets)");
+                               " points: the flips and splits do not converge on this mesh (splits cascade near sliver "
+                               "triangles, thin parts or nearly flat creases); remesh it first, or raise max_insertions");
     const std::size_t before = dt_.number_of_vertices();
     Dt::Vertex_handle vh = dt_.insert(p, hint);
     if (dt_.number_of_vertices() != before + 1)
@@ -250,6 +250,8 @@ class Converter {
     } else {
       p = 0.5 * (pa + pb);
     }
+    Dt::Vertex_handle existing;
+    if (dt_.is_vertex(to_point(p), existing)) p = 0.5 * (pa + pb);  // rounding hit a vertex: midpoint
     const std::uint32_t id = static_cast<std::uint32_t>(mesh_.number_of_vertices());
     insert(to_point(p), id, handle_[a]->cell());
     const HD hnew = CGAL::Euler::split_edge(h, mesh_);  // target(hnew) is the new vertex

@@ -179,9 +179,13 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
         if (j == (i + 1) % P) {
           sub.side_segment.push_back(poly_seg[i]);
           sub.side_covered.push_back(poly_covered[i]);
+          sub.side_chord.push_back(kNone);
         } else {
           sub.side_segment.push_back(kNone);
           sub.side_covered.push_back(0);
+          const std::array<Index, 2> key{std::min(i, j), std::max(i, j)};
+          const auto c = std::find(chords.begin(), chords.end(), key) - chords.begin();
+          sub.side_chord.push_back(sub.num_chords + static_cast<Index>(c));
         }
       }
       sub.face_begin.push_back(static_cast<Index>(sub.corners.size()));
@@ -197,6 +201,7 @@ Subdivision build_subdivision(const BurnGraph& g, const BurnResult& burn) {
       return directed_face[it - directed.begin()];
     };
     for (const auto& c : chords) chord_bridges.push_back({face_of(c[0], c[1]), face_of(c[1], c[0]), poly[c[0]]});
+    sub.num_chords += static_cast<Index>(chords.size());
   }
   sub.tri_face_begin[nt] = static_cast<Index>(sub.face_tri.size());
   const Index F = sub.num_faces();

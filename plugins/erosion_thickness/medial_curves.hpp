@@ -43,6 +43,8 @@ struct Subdivision {
   std::vector<Index> corners;         ///< node ids around the face
   std::vector<Index> side_segment;    ///< side (corner k -> k+1): segment id, or kNone for a chord
   std::vector<char> side_covered;     ///< side is a segment covered by a burn-tree edge-arc of this triangle
+  std::vector<Index> side_chord;      ///< side is a chord (burn arc across the triangle): its id, else kNone
+  Index num_chords = 0;
   std::vector<char> face_residue;     ///< all corners unburned (a triangle of a closed surface)
 
   // Dual points.

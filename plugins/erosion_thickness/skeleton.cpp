@@ -37,7 +37,7 @@ double mean_of(double a, double b) {
 struct Pair {
   int phase;  // 0: neither cell is a medial-curve edge; 1: one is (those go last)
   double prio_tau, prio_sigma;
-  int type;  // 0: (edge, triangle), 1: (vertex, edge)
+  int type;  // 0: (1-cell, 2-cell), 1: (0-cell, 1-cell)
   Index sigma, tau;
 };
 struct PairLater {
@@ -55,23 +55,145 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
   const auto t0 = Clock::now();
   const std::size_t np = sub.num_points();
   const Index V = g.num_vertices();
+  const Index N = sub.num_nodes, S = sub.num_segments, F = sub.num_faces();
   const std::vector<double> et_c = curve_erosion_thickness(sub);
+  auto is_face_point = [&](Index p) { return p >= N + S; };
+  auto key_of = [](Index a, Index b) {
+    return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
+  };
+  Skeleton out;
 
-  // ---- K: fan triangles per face -----------------------------------------------------------
-  std::vector<Tri> tris;
-  std::vector<Index> tri_face;
-  std::vector<Index> ring;
-  for (Index f = 0; f < sub.num_faces(); ++f) {
-    face_boundary_points(sub, f, ring);
-    const Index c = sub.face_point(f);
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      tris.push_back({c, ring[i], ring[(i + 1) % ring.size()]});
-      tri_face.push_back(f);
+  // ---- 1-cells ---------------------------------------------------------------------------------
+  // Segment pieces (split at the dual point of a used segment), chords, spokes (the curve edges
+  // from a face's dual point), loose edges. Ids in that order.
+  std::vector<Segment> ends;
+  std::vector<char> cell_curve;
+  std::vector<Index> piece_base(S + 1);
+  for (Index s = 0; s < S; ++s) {
+    piece_base[s] = static_cast<Index>(ends.size());
+    const auto nodes = sub.segment_nodes(g, s);
+    if (sub.segment_used[s]) {
+      ends.push_back({nodes[0], sub.segment_point(s)});
+      ends.push_back({sub.segment_point(s), nodes[1]});
+    } else {
+      ends.push_back({nodes[0], nodes[1]});
     }
   }
-  const std::size_t nt = tris.size();
-  std::vector<double> face_prio(sub.num_faces());
-  for (Index f = 0; f < sub.num_faces(); ++f) {
+  piece_base[S] = static_cast<Index>(ends.size());
+  // Chords: endpoints from the faces' sides.
+  const Index chord_base = static_cast<Index>(ends.size());
+  ends.resize(ends.size() + sub.num_chords, Segment{kNone, kNone});
+  for (Index f = 0; f < F; ++f) {
+    const Index b = sub.face_begin[f], m = sub.face_begin[f + 1] - b;
+    for (Index k = 0; k < m; ++k)
+      if (sub.side_chord[b + k] != kNone)
+        ends[chord_base + sub.side_chord[b + k]] = {sub.corners[b + k], sub.corners[b + (k + 1) % m]};
+  }
+  cell_curve.assign(ends.size(), 0);
+  // Curve edges: spokes (face dual - point) become cells; segment dual - node edges mark pieces.
+  std::vector<Index> spoke_begin(F + 1, 0);
+  for (const Segment& e : sub.curve_edges) {
+    const bool a = is_face_point(e[0]), bb = is_face_point(e[1]);
+    if (a != bb) ++spoke_begin[(a ? e[0] : e[1]) - N - S + 1];
+  }
+  std::partial_sum(spoke_begin.begin(), spoke_begin.end(), spoke_begin.begin());
+  std::vector<Index> spoke_target(spoke_begin[F]);
+  {
+    std::vector<Index> fill(spoke_begin.begin(), spoke_begin.end() - 1);
+    for (const Segment& e : sub.curve_edges) {
+      const bool a = is_face_point(e[0]), bb = is_face_point(e[1]);
+      if (a != bb) spoke_target[fill[(a ? e[0] : e[1]) - N - S]++] = a ? e[1] : e[0];
+      else if (!a) {  // segment dual - unburned node: the piece between them is a curve edge
+        const Index sp = e[0] >= N ? e[0] : e[1], node = e[0] >= N ? e[1] : e[0];
+        const Index s = sp - N;
+        for (Index c = piece_base[s]; c < piece_base[s + 1]; ++c)
+          if (ends[c][0] == node || ends[c][1] == node) cell_curve[c] = 1;
+      }
+    }
+  }
+
+  // ---- 2-cells: wedges ---------------------------------------------------------------------------
+  // Face f's ring b_0..b_{m-1} (corners and used segment duals) is cut by its spokes into wedges;
+  // a face with one spoke is one 2-cell whose boundary runs through the spoke twice.
+  std::vector<Index> w_face, w_first, w_len;  // ring range [first, first + len] (cyclic), len >= 1
+  std::vector<Index> w_bnd_begin{0}, w_bnd;   // boundary 1-cells, with multiplicity
+  std::vector<Index> ring, ring_cell, cpos, spoke_cell;
+  std::vector<Index> face_wedge_begin(F + 1, 0);
+  std::vector<double> w_area;
+  for (Index f = 0; f < F; ++f) {
+    face_wedge_begin[f] = static_cast<Index>(w_face.size());
+    face_boundary_points(sub, f, ring);
+    const Index m = static_cast<Index>(ring.size());
+    // The 1-cell between ring[i] and ring[i+1].
+    ring_cell.clear();
+    {
+      const Index b = sub.face_begin[f], nc = sub.face_begin[f + 1] - b;
+      for (Index k = 0; k < nc; ++k) {
+        const Index s = sub.side_segment[b + k];
+        if (s == kNone) {
+          ring_cell.push_back(chord_base + sub.side_chord[b + k]);
+          continue;
+        }
+        const Index corner = sub.corners[b + k];
+        if (!sub.segment_used[s]) {
+          ring_cell.push_back(piece_base[s]);
+        } else {
+          const bool from_first = ends[piece_base[s]][0] == corner;
+          ring_cell.push_back(piece_base[s] + (from_first ? 0 : 1));
+          ring_cell.push_back(piece_base[s] + (from_first ? 1 : 0));
+        }
+      }
+    }
+    // Spokes at ring positions.
+    cpos.clear();
+    spoke_cell.clear();
+    for (Index i = 0; i < m; ++i)
+      for (Index k = spoke_begin[f]; k < spoke_begin[f + 1]; ++k)
+        if (spoke_target[k] == ring[i]) {
+          cpos.push_back(i);
+          spoke_cell.push_back(static_cast<Index>(ends.size()));
+          ends.push_back({sub.face_point(f), ring[i]});
+          cell_curve.push_back(1);
+          break;
+        }
+    const Vec3& c = sub.point[sub.face_point(f)];
+    auto wedge = [&](Index first, Index len, Index spoke_a, Index spoke_b) {
+      w_face.push_back(f);
+      w_first.push_back(first);
+      w_len.push_back(len);
+      double area = 0;
+      if (spoke_a != kNone) w_bnd.push_back(spoke_a);
+      for (Index i = 0; i < len; ++i) {
+        const Index r = (first + i) % m;
+        w_bnd.push_back(ring_cell[r]);
+        area += 0.5 * (sub.point[ring[r]] - c).cross(sub.point[ring[(r + 1) % m]] - c).norm();
+      }
+      if (spoke_b != kNone) w_bnd.push_back(spoke_b);
+      w_bnd_begin.push_back(static_cast<Index>(w_bnd.size()));
+      w_area.push_back(area);
+    };
+    if (cpos.empty()) {
+      wedge(0, m, kNone, kNone);
+    } else {
+      const std::size_t k = cpos.size();
+      for (std::size_t j = 0; j < k; ++j) {
+        const Index a = cpos[j], bpos = cpos[(j + 1) % k];
+        const Index len = k == 1 ? m : (bpos + m - a) % m;
+        wedge(a, len, spoke_cell[j], spoke_cell[(j + 1) % k]);
+      }
+    }
+  }
+  face_wedge_begin[F] = static_cast<Index>(w_face.size());
+  const Index loose_base = static_cast<Index>(ends.size());
+  for (const Segment& e : loose_edges) {
+    ends.push_back(e);
+    cell_curve.push_back(0);
+  }
+  const std::size_t ne = ends.size(), nw = w_face.size();
+
+  // Priorities.
+  std::vector<double> face_prio(F);
+  for (Index f = 0; f < F; ++f) {
     double sum = 0;
     bool inf = false;
     const Index b = sub.face_begin[f], m = sub.face_begin[f + 1] - b;
@@ -82,217 +204,210 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     }
     face_prio[f] = inf ? kInf : sum / m;
   }
-
-  const double t_fans = std::chrono::duration<double>(Clock::now() - t0).count();
-  // ---- K: edges --------------------------------------------------------------------------------
-  struct Rec {
-    std::uint64_t key;
-    Index tri;  // kNone for a loose edge
-    int side;
-  };
-  std::vector<Rec> recs;
-  recs.reserve(3 * nt + loose_edges.size());
-  auto key_of = [](Index a, Index b) {
-    return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
-  };
-  for (std::size_t t = 0; t < nt; ++t)
-    for (int j = 0; j < 3; ++j)
-      recs.push_back({key_of(tris[t][j], tris[t][(j + 1) % 3]), static_cast<Index>(t), j});
-  for (const Segment& e : loose_edges) recs.push_back({key_of(e[0], e[1]), kNone, 0});
-  for (const Segment& e : sub.curve_edges) recs.push_back({key_of(e[0], e[1]), kNone, 1});  // marks curve edges
-  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    return a.key < b.key || (a.key == b.key && a.tri < b.tri);
-  });
-  std::vector<Segment> edges;
-  std::vector<char> edge_curve;
-  std::vector<Index> edge_tri_begin{0}, edge_tris;
-  std::vector<std::array<Index, 3>> tri_edge(nt);
-  for (std::size_t i = 0; i < recs.size();) {
-    std::size_t k = i;
-    bool cell = false, curve = false;
-    for (; k < recs.size() && recs[k].key == recs[i].key; ++k) {
-      if (recs[k].tri != kNone || recs[k].side == 0) cell = true;
-      else curve = true;
-    }
-    if (cell) {  // (a curve edge is always a fan spoke or a segment piece; never make one up)
-      const Index e = static_cast<Index>(edges.size());
-      edges.push_back({static_cast<Index>(recs[i].key >> 32), static_cast<Index>(recs[i].key & 0xffffffffu)});
-      edge_curve.push_back(curve);
-      for (std::size_t r = i; r < k; ++r)
-        if (recs[r].tri != kNone) {
-          tri_edge[recs[r].tri][recs[r].side] = e;
-          edge_tris.push_back(recs[r].tri);
-        }
-      edge_tri_begin.push_back(static_cast<Index>(edge_tris.size()));
-    }
-    i = k;
-  }
-  recs.clear();
-  recs.shrink_to_fit();
-  const std::size_t ne = edges.size();
-
-  // Vertex -> edges.
-  std::vector<Index> vert_edge_begin(np + 1, 0), vert_edges(2 * ne);
-  for (const Segment& e : edges) ++vert_edge_begin[e[0] + 1], ++vert_edge_begin[e[1] + 1];
-  std::partial_sum(vert_edge_begin.begin(), vert_edge_begin.end(), vert_edge_begin.begin());
-  {
-    std::vector<Index> fill(vert_edge_begin.begin(), vert_edge_begin.end() - 1);
-    for (std::size_t e = 0; e < ne; ++e)
-      for (Index v : edges[e]) vert_edges[fill[v]++] = static_cast<Index>(e);
-  }
-
-  // Curve edge priorities.
-  std::vector<double> edge_prio(ne, kNegInf);
+  std::vector<double> cell_prio(ne, kNegInf);
   for (std::size_t e = 0; e < ne; ++e)
-    if (edge_curve[e]) edge_prio[e] = mean_of(et_c[edges[e][0]], et_c[edges[e][1]]);
+    if (cell_curve[e]) cell_prio[e] = mean_of(et_c[ends[e][0]], et_c[ends[e][1]]);
 
-  Skeleton out;
-  out.refined_faces = nt;
-  out.refined_edges = ne;
-
-  out.seconds_refine = std::chrono::duration<double>(Clock::now() - t0).count();
-  out.seconds_fans = t_fans;
-  const auto t1 = Clock::now();
-  // ---- protection ----------------------------------------------------------------------------
-  std::vector<char> tri_protected(nt, 0);
-  for (std::size_t t = 0; t < nt; ++t) tri_protected[t] = face_prio[tri_face[t]] > options.theta2;
+  // Incidences: 1-cell -> wedges (with multiplicity), point -> 1-cells.
+  std::vector<Index> cof_begin(ne + 1, 0), cof;
+  for (Index c : w_bnd) ++cof_begin[c + 1];
+  std::partial_sum(cof_begin.begin(), cof_begin.end(), cof_begin.begin());
+  cof.resize(cof_begin[ne]);
   {
-    UnionFind uf(nt);
+    std::vector<Index> fill(cof_begin.begin(), cof_begin.end() - 1);
+    for (Index w = 0; w < nw; ++w)
+      for (Index i = w_bnd_begin[w]; i < w_bnd_begin[w + 1]; ++i) cof[fill[w_bnd[i]]++] = w;
+  }
+  std::vector<Index> inc_begin(np + 1, 0), inc(2 * ne);
+  for (const Segment& e : ends) ++inc_begin[e[0] + 1], ++inc_begin[e[1] + 1];
+  std::partial_sum(inc_begin.begin(), inc_begin.end(), inc_begin.begin());
+  {
+    std::vector<Index> fill(inc_begin.begin(), inc_begin.end() - 1);
+    for (std::size_t e = 0; e < ne; ++e)
+      for (Index v : ends[e]) inc[fill[v]++] = static_cast<Index>(e);
+  }
+  out.refined_faces = nw;
+  out.refined_edges = ne;
+  out.seconds_fans = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.seconds_refine = out.seconds_fans;
+  const auto t1 = Clock::now();
+
+  // ---- protection ----------------------------------------------------------------------------
+  std::vector<char> w_protected(nw, 0);
+  for (std::size_t w = 0; w < nw; ++w) w_protected[w] = face_prio[w_face[w]] > options.theta2;
+  {
+    UnionFind uf(nw);
     for (std::size_t e = 0; e < ne; ++e) {
       Index first = kNone;
-      for (Index i = edge_tri_begin[e]; i < edge_tri_begin[e + 1]; ++i) {
-        const Index t = edge_tris[i];
-        if (!tri_protected[t]) continue;
-        if (first == kNone) first = t;
-        else uf.unite(first, t);
+      for (Index i = cof_begin[e]; i < cof_begin[e + 1]; ++i) {
+        const Index w = cof[i];
+        if (!w_protected[w]) continue;
+        if (first == kNone) first = w;
+        else uf.unite(first, w);
       }
     }
-    std::vector<double> area(nt, 0.0);
-    for (std::size_t t = 0; t < nt; ++t)
-      if (tri_protected[t]) {
-        const Vec3 &a = sub.point[tris[t][0]], &b = sub.point[tris[t][1]], &c = sub.point[tris[t][2]];
-        area[uf.find(static_cast<Index>(t))] += 0.5 * (b - a).cross(c - a).norm();
-      }
-    std::vector<char> root_seen(nt, 0);
-    for (std::size_t t = 0; t < nt; ++t)
-      if (tri_protected[t]) {
-        const Index r = uf.find(static_cast<Index>(t));
+    std::vector<double> area(nw, 0.0);
+    for (std::size_t w = 0; w < nw; ++w)
+      if (w_protected[w]) area[uf.find(static_cast<Index>(w))] += w_area[w];
+    std::vector<char> root_seen(nw, 0);
+    for (std::size_t w = 0; w < nw; ++w)
+      if (w_protected[w]) {
+        const Index r = uf.find(static_cast<Index>(w));
         if (area[r] < options.phi2) {
           if (!root_seen[r]) root_seen[r] = 1, ++out.dropped_sheet_components;
-          tri_protected[t] = 0;
+          w_protected[w] = 0;
         }
       }
   }
-  std::vector<char> edge_protected(ne, 0);
-  for (std::size_t e = 0; e < ne; ++e) edge_protected[e] = edge_curve[e] && edge_prio[e] > options.theta1;
+  std::vector<char> e_protected(ne, 0);
+  for (std::size_t e = 0; e < ne; ++e) e_protected[e] = cell_curve[e] && cell_prio[e] > options.theta1;
   {
     UnionFind uf(np);
     for (std::size_t e = 0; e < ne; ++e)
-      if (edge_protected[e]) uf.unite(edges[e][0], edges[e][1]);
+      if (e_protected[e]) uf.unite(ends[e][0], ends[e][1]);
     std::vector<double> length(np, 0.0);
     for (std::size_t e = 0; e < ne; ++e)
-      if (edge_protected[e])
-        length[uf.find(edges[e][0])] += (sub.point[edges[e][0]] - sub.point[edges[e][1]]).norm();
+      if (e_protected[e]) length[uf.find(ends[e][0])] += (sub.point[ends[e][0]] - sub.point[ends[e][1]]).norm();
     std::vector<char> root_seen(np, 0);
     for (std::size_t e = 0; e < ne; ++e)
-      if (edge_protected[e]) {
-        const Index r = uf.find(edges[e][0]);
+      if (e_protected[e]) {
+        const Index r = uf.find(ends[e][0]);
         if (length[r] < options.phi1) {
           if (!root_seen[r]) root_seen[r] = 1, ++out.dropped_curve_components;
-          edge_protected[e] = 0;
+          e_protected[e] = 0;
         }
       }
   }
-  std::vector<char> kept_tri(tri_protected), kept_edge(edge_protected), kept_vertex(np, 0);
-  for (std::size_t t = 0; t < nt; ++t)
-    if (kept_tri[t]) {
+  std::vector<char> kept_w(w_protected), kept_e(e_protected), kept_v(np, 0);
+  for (std::size_t w = 0; w < nw; ++w)
+    if (kept_w[w]) {
       ++out.protected_faces;
-      for (Index e : tri_edge[t]) kept_edge[e] = 1;
+      out.protected_area += w_area[w];
+      for (Index i = w_bnd_begin[w]; i < w_bnd_begin[w + 1]; ++i) kept_e[w_bnd[i]] = 1;
     }
   for (std::size_t e = 0; e < ne; ++e) {
-    out.protected_curve_edges += edge_protected[e];
-    if (kept_edge[e]) kept_vertex[edges[e][0]] = kept_vertex[edges[e][1]] = 1;
+    out.protected_curve_edges += e_protected[e];
+    if (kept_e[e]) kept_v[ends[e][0]] = kept_v[ends[e][1]] = 1;
   }
+  out.seconds_protect = std::chrono::duration<double>(Clock::now() - t1).count();
 
-  const double t_protect = std::chrono::duration<double>(Clock::now() - t1).count();
   // ---- contraction ---------------------------------------------------------------------------
-  std::vector<char> tri_alive(nt, 1), edge_alive(ne, 1), vertex_alive(np, 0);
-  for (Index v = 0; v < V; ++v) vertex_alive[v] = 1;
-  for (const Segment& e : edges) vertex_alive[e[0]] = vertex_alive[e[1]] = 1;
-  std::vector<Index> edge_count(ne), vertex_count(np);
-  for (std::size_t e = 0; e < ne; ++e) edge_count[e] = edge_tri_begin[e + 1] - edge_tri_begin[e];
-  for (std::size_t v = 0; v < np; ++v) vertex_count[v] = vert_edge_begin[v + 1] - vert_edge_begin[v];
-  out.refined_vertices = static_cast<std::size_t>(std::count(vertex_alive.begin(), vertex_alive.end(), 1));
+  std::vector<char> w_alive(nw, 1), e_alive(ne, 1), v_alive(np, 0);
+  for (Index v = 0; v < V; ++v) v_alive[v] = 1;
+  for (const Segment& e : ends) v_alive[e[0]] = v_alive[e[1]] = 1;
+  out.refined_vertices = static_cast<std::size_t>(std::count(v_alive.begin(), v_alive.end(), 1));
+  std::vector<Index> e_count(ne), v_count(np);
+  for (std::size_t e = 0; e < ne; ++e) e_count[e] = cof_begin[e + 1] - cof_begin[e];
+  for (std::size_t v = 0; v < np; ++v) v_count[v] = inc_begin[v + 1] - inc_begin[v];
 
-  std::priority_queue<Pair, std::vector<Pair>, PairLater> heap;
-  auto try_edge_tri = [&](Index e) {
-    if (!edge_alive[e] || edge_count[e] != 1 || kept_edge[e]) return;
-    for (Index i = edge_tri_begin[e]; i < edge_tri_begin[e + 1]; ++i) {
-      const Index t = edge_tris[i];
-      if (!tri_alive[t]) continue;
-      if (!kept_tri[t]) heap.push({edge_curve[e], face_prio[tri_face[t]], edge_prio[e], 0, e, t});
+  // Three queues, popped in this order, give the order (phase, prio tau, prio sigma, type, tau,
+  // sigma) with small entries: phase-0 (0-cell, 1-cell) pairs (prio tau = -inf) keyed by
+  // (1-cell, 0-cell); phase-0 (1-cell, wedge) pairs (prio sigma = -inf) keyed by (rank of the
+  // wedge by (prio, id), 1-cell); phase-1 pairs with their full key.
+  std::vector<Index> wedge_rank(nw);
+  {
+    std::vector<Index> faces(F);
+    std::iota(faces.begin(), faces.end(), Index(0));
+    std::sort(faces.begin(), faces.end(), [&](Index a, Index b) {
+      return face_prio[a] < face_prio[b] || (face_prio[a] == face_prio[b] && a < b);
+    });
+    Index r = 0;
+    for (Index f : faces)
+      for (Index w = face_wedge_begin[f]; w < face_wedge_begin[f + 1]; ++w) wedge_rank[w] = r++;
+  }
+  using Key = std::uint64_t;
+  std::priority_queue<Key, std::vector<Key>, std::greater<>> vertex_pairs, wedge_pairs;
+  std::priority_queue<Pair, std::vector<Pair>, PairLater> curve_pairs;
+  // Phase-1 pairs are only queued once phase 0 has run dry (then every free one is found by a
+  // scan): queued earlier, most would be stale by then and only slow the queue down.
+  bool curves_active = false;
+  auto try_edge_wedge = [&](Index e) {
+    if (!e_alive[e] || e_count[e] != 1 || kept_e[e]) return;
+    for (Index i = cof_begin[e]; i < cof_begin[e + 1]; ++i) {
+      const Index w = cof[i];
+      if (!w_alive[w]) continue;
+      if (kept_w[w]) return;
+      if (!cell_curve[e]) wedge_pairs.push((Key(wedge_rank[w]) << 32) | e);
+      else if (curves_active) curve_pairs.push({1, face_prio[w_face[w]], cell_prio[e], 0, e, w});
       return;
     }
   };
   auto try_vertex_edge = [&](Index v) {
-    if (!vertex_alive[v] || vertex_count[v] != 1 || kept_vertex[v]) return;
-    for (Index i = vert_edge_begin[v]; i < vert_edge_begin[v + 1]; ++i) {
-      const Index e = vert_edges[i];
-      if (!edge_alive[e]) continue;
-      if (edge_count[e] == 0 && !kept_edge[e]) heap.push({edge_curve[e], edge_prio[e], kNegInf, 1, v, e});
+    if (!v_alive[v] || v_count[v] != 1 || kept_v[v]) return;
+    for (Index i = inc_begin[v]; i < inc_begin[v + 1]; ++i) {
+      const Index e = inc[i];
+      if (!e_alive[e]) continue;
+      if (e_count[e] != 0 || kept_e[e]) return;
+      if (!cell_curve[e]) vertex_pairs.push((Key(e) << 32) | v);
+      else if (curves_active) curve_pairs.push({1, cell_prio[e], kNegInf, 1, v, e});
       return;
     }
   };
-  for (Index e = 0; e < ne; ++e) try_edge_tri(e);
+  for (Index e = 0; e < ne; ++e) try_edge_wedge(e);
   for (Index v = 0; v < np; ++v) try_vertex_edge(v);
-
-  while (!heap.empty()) {
-    const Pair p = heap.top();
-    heap.pop();
-    if (p.type == 0) {
-      const Index e = p.sigma, t = p.tau;
-      if (!tri_alive[t] || !edge_alive[e] || edge_count[e] != 1) continue;
-      tri_alive[t] = 0;
-      edge_alive[e] = 0;
-      for (Index e2 : tri_edge[t]) --edge_count[e2];
-      for (Index v : edges[e]) --vertex_count[v];
-      for (Index e2 : tri_edge[t]) {
-        if (e2 == e) continue;
-        if (edge_count[e2] == 1) try_edge_tri(e2);
-        else if (edge_count[e2] == 0) try_vertex_edge(edges[e2][0]), try_vertex_edge(edges[e2][1]);
-      }
-      for (Index v : edges[e]) try_vertex_edge(v);
+  auto collapse_wedge = [&](Index e, Index w) {
+    if (!w_alive[w] || !e_alive[e] || e_count[e] != 1) return;
+    w_alive[w] = 0;
+    e_alive[e] = 0;
+    for (Index i = w_bnd_begin[w]; i < w_bnd_begin[w + 1]; ++i) --e_count[w_bnd[i]];
+    for (Index v : ends[e]) --v_count[v];
+    for (Index i = w_bnd_begin[w]; i < w_bnd_begin[w + 1]; ++i) {
+      const Index e2 = w_bnd[i];
+      if (e2 == e || !e_alive[e2]) continue;
+      if (e_count[e2] == 1) try_edge_wedge(e2);
+      else if (e_count[e2] == 0) try_vertex_edge(ends[e2][0]), try_vertex_edge(ends[e2][1]);
+    }
+    for (Index v : ends[e]) try_vertex_edge(v);
+  };
+  auto collapse_vertex = [&](Index v, Index e) {
+    if (!v_alive[v] || !e_alive[e] || e_count[e] != 0 || v_count[v] != 1) return;
+    v_alive[v] = 0;
+    e_alive[e] = 0;
+    v_count[v] = 0;
+    const Index w = ends[e][0] == v ? ends[e][1] : ends[e][0];
+    --v_count[w];
+    try_vertex_edge(w);
+  };
+  std::vector<Index> wedge_of_rank(nw);
+  for (Index w = 0; w < nw; ++w) wedge_of_rank[wedge_rank[w]] = w;
+  for (;;) {
+    if (!vertex_pairs.empty()) {
+      const Key k = vertex_pairs.top();
+      vertex_pairs.pop();
+      collapse_vertex(static_cast<Index>(k & 0xffffffffu), static_cast<Index>(k >> 32));
+    } else if (!wedge_pairs.empty()) {
+      const Key k = wedge_pairs.top();
+      wedge_pairs.pop();
+      collapse_wedge(static_cast<Index>(k & 0xffffffffu), wedge_of_rank[k >> 32]);
+    } else if (!curves_active) {
+      curves_active = true;
+      for (Index e = 0; e < ne; ++e)
+        if (cell_curve[e]) try_edge_wedge(e), try_vertex_edge(ends[e][0]), try_vertex_edge(ends[e][1]);
+    } else if (!curve_pairs.empty()) {
+      const Pair p = curve_pairs.top();
+      curve_pairs.pop();
+      if (p.type == 0) collapse_wedge(p.sigma, p.tau);
+      else collapse_vertex(p.sigma, p.tau);
     } else {
-      const Index v = p.sigma, e = p.tau;
-      if (!vertex_alive[v] || !edge_alive[e] || edge_count[e] != 0 || vertex_count[v] != 1) continue;
-      vertex_alive[v] = 0;
-      edge_alive[e] = 0;
-      vertex_count[v] = 0;
-      const Index w = edges[e][0] == v ? edges[e][1] : edges[e][0];
-      --vertex_count[w];
-      try_vertex_edge(w);
+      break;
     }
   }
-
   out.seconds_contract = std::chrono::duration<double>(Clock::now() - t1).count();
-  out.seconds_protect = t_protect;
   const auto t2 = Clock::now();
+
   // ---- output --------------------------------------------------------------------------------
-  // Coarsening: a triangle of the input whose fan triangles all survive is written as itself
-  // (or as a fan from its centre over the points its sides must keep), and a point on an edge
-  // whose triangles all survive whole is dropped: the same disk, the same topology, far fewer
-  // triangles. Everything else is written as the refined cells that survived.
+  // Coarsening: a triangle of the input whose wedges all survive is written as itself (or as a
+  // fan from its centre over the points its sides must keep), and a point on an edge whose
+  // triangles all survive whole is dropped: the same disk, the same topology, far fewer
+  // triangles. The other surviving wedges are written as fans from their face's dual point.
   const TriangleComplex& cx = *g.cx;
   const std::size_t nmt = cx.num_triangles();
-  std::vector<Index> face_first_tri(sub.num_faces() + 1, 0);
-  for (std::size_t t = 0; t < nt; ++t) ++face_first_tri[tri_face[t] + 1];
-  std::partial_sum(face_first_tri.begin(), face_first_tri.end(), face_first_tri.begin());
   std::vector<char> whole(nmt, 0);
   if (options.coarsen)
     for (std::size_t T = 0; T < nmt; ++T) {
       bool all = true;
       for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1] && all; ++f)
-        for (Index k = face_first_tri[f]; k < face_first_tri[f + 1] && all; ++k) all = tri_alive[k];
+        for (Index w = face_wedge_begin[f]; w < face_wedge_begin[f + 1] && all; ++w) all = w_alive[w];
       whole[T] = all;
     }
   std::vector<char> coarse_edge(cx.num_edges(), 0);
@@ -301,7 +416,6 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     for (Index i = cx.edge_tri_begin[e]; i < cx.edge_tri_begin[e + 1] && all; ++i) all = whole[cx.edge_tris[i]];
     coarse_edge[e] = all;
   }
-
   std::vector<Index> local(np, kNone);
   auto point = [&](Index p) {
     if (local[p] != kNone) return local[p];
@@ -311,33 +425,38 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     out.bt.push_back(sub.point_bt[p]);
     out.et.push_back(sub.point_et[p]);
     out.et_c.push_back(et_c[p]);
-    out.kind.push_back(p < sub.num_nodes ? (g.is_vertex(static_cast<Index>(p)) ? 0 : 1)
-                                         : p < sub.num_nodes + sub.num_segments ? 2 : 3);
+    out.kind.push_back(p < N ? (g.is_vertex(static_cast<Index>(p)) ? 0 : 1) : p < N + S ? 2 : 3);
     return local[p];
   };
   // Vertices left without edges (isolated input vertices, the point a component collapsed to).
   for (Index p = 0; p < np; ++p)
-    if (vertex_alive[p] && vertex_count[p] == 0) point(p);
-  ring.clear();
+    if (v_alive[p] && v_count[p] == 0) point(p);
   for (std::size_t T = 0; T < nmt; ++T) {
     if (!whole[T]) {
-      for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1]; ++f)
-        for (Index k = face_first_tri[f]; k < face_first_tri[f + 1]; ++k)
-          if (tri_alive[k]) {
-            out.faces.push_back({point(tris[k][0]), point(tris[k][1]), point(tris[k][2])});
+      for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1]; ++f) {
+        bool any = false;
+        for (Index w = face_wedge_begin[f]; w < face_wedge_begin[f + 1] && !any; ++w) any = w_alive[w];
+        if (!any) continue;
+        face_boundary_points(sub, f, ring);
+        const Index m = static_cast<Index>(ring.size()), c = point(sub.face_point(f));
+        for (Index w = face_wedge_begin[f]; w < face_wedge_begin[f + 1]; ++w) {
+          if (!w_alive[w]) continue;
+          for (Index i = 0; i < w_len[w]; ++i) {
+            const Index r = (w_first[w] + i) % m;
+            out.faces.push_back({c, point(ring[r]), point(ring[(r + 1) % m])});
             out.face_priority.push_back(face_prio[f]);
           }
+        }
+      }
       continue;
     }
     // Area-weighted priority of the whole triangle.
     double area = 0, weighted = 0;
     bool inf = false;
     for (Index f = sub.tri_face_begin[T]; f < sub.tri_face_begin[T + 1]; ++f)
-      for (Index k = face_first_tri[f]; k < face_first_tri[f + 1]; ++k) {
-        const Vec3 &a = sub.point[tris[k][0]], &b = sub.point[tris[k][1]], &c = sub.point[tris[k][2]];
-        const double A = 0.5 * (b - a).cross(c - a).norm();
+      for (Index w = face_wedge_begin[f]; w < face_wedge_begin[f + 1]; ++w) {
         if (std::isinf(face_prio[f])) inf = true;
-        else area += A, weighted += A * face_prio[f];
+        else area += w_area[w], weighted += w_area[w] * face_prio[f];
       }
     const double prio = inf ? kInf : area > 0 ? weighted / area : face_prio[sub.tri_face_begin[T]];
     ring.clear();
@@ -353,10 +472,10 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
         if (sub.segment_used[s]) ring.push_back(sub.segment_point(s));
       }
     }
+    ++out.coarse_triangles;
     if (ring.size() == 3) {
       out.faces.push_back({point(ring[0]), point(ring[1]), point(ring[2])});
       out.face_priority.push_back(prio);
-      ++out.coarse_triangles;
       continue;
     }
     // Fan from the triangle's centre (attributes: the mean of its corners').
@@ -374,9 +493,8 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
       out.faces.push_back({centre, point(ring[i]), point(ring[(i + 1) % ring.size()])});
       out.face_priority.push_back(prio);
     }
-    ++out.coarse_triangles;
   }
-  // Edges: the sides of the written triangles and the surviving edges that bound no triangle.
+  // Edges: the sides of the written triangles and the surviving 1-cells that bound nothing.
   struct EdgeOut {
     std::uint64_t key;
     char curve;
@@ -385,13 +503,13 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
   std::vector<EdgeOut> eo;
   for (const Tri& t : out.faces)
     for (int j = 0; j < 3; ++j) eo.push_back({key_of(t[j], t[(j + 1) % 3]), 0, kNegInf});
-  std::vector<EdgeOut> curve_sides;  // surviving curve edges, to label the sides that are curve edges
+  std::vector<EdgeOut> curve_sides;  // surviving curve cells, to label the sides that are curve edges
   for (std::size_t e = 0; e < ne; ++e) {
-    if (!edge_alive[e]) continue;
-    if (edge_count[e] == 0) {
-      eo.push_back({key_of(point(edges[e][0]), point(edges[e][1])), edge_curve[e], edge_prio[e]});
-    } else if (edge_curve[e] && local[edges[e][0]] != kNone && local[edges[e][1]] != kNone) {
-      curve_sides.push_back({key_of(local[edges[e][0]], local[edges[e][1]]), 1, edge_prio[e]});
+    if (!e_alive[e]) continue;
+    if (e_count[e] == 0) {
+      eo.push_back({key_of(point(ends[e][0]), point(ends[e][1])), cell_curve[e], cell_prio[e]});
+    } else if (cell_curve[e] && local[ends[e][0]] != kNone && local[ends[e][1]] != kNone) {
+      curve_sides.push_back({key_of(local[ends[e][0]], local[ends[e][1]]), 1, cell_prio[e]});
     }
   }
   auto by_key = [](const EdgeOut& a, const EdgeOut& b) { return a.key < b.key; };
@@ -410,6 +528,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
     out.edge_curve.push_back(e.curve);
     out.edge_priority.push_back(e.prio);
   }
+  (void)loose_base;
   out.seconds_output = std::chrono::duration<double>(Clock::now() - t2).count();
   return out;
 }

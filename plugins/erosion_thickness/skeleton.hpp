@@ -1,25 +1,27 @@
 #pragma once
 // Shape-revealing, topology-preserving skeletons (Yan et al. 2016, §7.3; notes §6).
 //
-// The refined complex K is simplicial: every face of the subdivision (medial_curves.hpp) is
-// fanned from its dual point over its corners and the dual points of its used segments, so the
-// medial-curve edges (face dual -> segment dual) are edges of K and every paper face is the union
-// of its fan triangles, which share its priority. Edges of the input that bound no triangle and
-// isolated vertices are kept as they are (priority -inf; they collapse like any free cell).
+// The refined complex K is the paper's cell complex: every triangle is cut by the burn arcs into
+// faces (medial_curves.hpp) and every face by its medial-curve edges (spokes from the face's dual
+// point) into wedges. 2-cells: the wedges (a face with a single spoke is one 2-cell whose boundary
+// runs through the spoke twice; it cannot collapse through it); 1-cells: the pieces of the
+// segments (split at used dual points), the chords (burn arcs across a triangle), the spokes and
+// the input's edges that bound no triangle; 0-cells: graph nodes and dual points. A pair (sigma,
+// tau) is free when sigma appears once in the boundary of tau and in no other surviving cell.
 //
-// Output: input triangles that survive whole are written as themselves, or as a fan from their
-// centre when a neighbour needs the points on their sides; the rest as the refined cells.
+// Priorities: a wedge gets the mean ET_M over the graph-node corners of its face; a medial-curve
+// 1-cell the mean ET_C of its ends; every other cell -inf. Protected: wedges with priority >
+// theta2 and curve 1-cells with priority > theta1, minus connected components (wedges sharing a
+// 1-cell; curve 1-cells sharing a point) of area < phi2 or length < phi1. Then the contraction
+// of Liu et al. 2010 removes free pairs whose cells are outside the closure of the protected
+// cells until none is left: the result is homotopy equivalent to the input and contains every
+// protected cell. Order: first every pair that involves no medial-curve cell, in ascending
+// (prio tau, prio sigma); then the pairs that cut or prune the curves, in the same order (so what
+// survives to keep the topology follows C, and C's branches are pruned from low ET_C to high).
 //
-// Priorities: a fan triangle gets the mean ET_M over the graph-node corners of its face; an edge
-// of C the mean ET_C of its ends; every other cell -inf. Protected: triangles with priority >
-// theta2 and curve edges with priority > theta1, minus connected components (edge-adjacent
-// triangles; vertex-adjacent curve edges) of area < phi2 or length < phi1. Then the contraction
-// of Liu et al. 2010 removes simple pairs (sigma, tau) - tau maximal, sigma's only coface, both
-// outside the closure of the protected cells - until none is left: the result is homotopy
-// equivalent to the input and contains every protected cell. Order: first every pair that
-// involves no medial-curve edge, in ascending (prio tau, prio sigma); then the pairs that cut or
-// prune the curves, in the same order (so what survives to keep the topology follows C, and C's
-// branches are pruned from low ET_C to high).
+// Output (a MedialComplex needs triangles): surviving wedges as fans from their face's dual
+// point; input triangles whose wedges all survive are written as themselves, or as a fan from
+// their centre when a neighbour needs the points on their sides.
 #include "medial_curves.hpp"
 
 #include <cstddef>
@@ -43,11 +45,12 @@ struct Skeleton {
   std::vector<int> edge_curve;               ///< 1 for edges of the medial curves
   std::vector<double> edge_priority;         ///< ET_C mean for curve edges, -inf otherwise
   std::vector<Tri> faces;
-  std::vector<double> face_priority;         ///< mean ET_M of the paper face
+  std::vector<double> face_priority;         ///< mean ET_M of the paper face (area-weighted when coarsened)
 
   // Statistics.
-  std::size_t refined_vertices = 0, refined_edges = 0, refined_faces = 0;
-  std::size_t protected_faces = 0, protected_curve_edges = 0;
+  std::size_t refined_vertices = 0, refined_edges = 0, refined_faces = 0;  ///< cells of K (faces: wedges)
+  std::size_t protected_faces = 0, protected_curve_edges = 0;  ///< wedges, curve 1-cells
+  double protected_area = 0;
   std::size_t dropped_sheet_components = 0, dropped_curve_components = 0;
   std::size_t coarse_triangles = 0;  ///< input triangles written whole (as one triangle or a fan)
   double seconds_refine = 0, seconds_fans = 0, seconds_protect = 0, seconds_contract = 0, seconds_output = 0;

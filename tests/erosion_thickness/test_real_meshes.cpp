@@ -137,8 +137,8 @@ void skeletons(const char* name, std::size_t genus) {
   require_same(t, tp);
   CHECK(point.faces.empty());
   CHECK(long(point.num_vertices()) - long(point.edges.size()) == 1 - long(genus));
-  WARN(name << ": complex " << text(t) << " -> skeleton " << text(ts) << " (protected " << s.protected_faces
-            << " refined triangles, " << s.protected_curve_edges << " curve edges) -> minimal " << text(tp));
+  WARN(name << ": complex " << text(t) << " -> skeleton " << text(ts) << " (protected " << s.protected_faces << " wedges"
+            << ", " << s.protected_curve_edges << " curve edges) -> minimal " << text(tp));
 }
 
 }  // namespace

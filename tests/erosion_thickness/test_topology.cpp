@@ -186,9 +186,13 @@ TEST_CASE("Skeleton keeps every protected cell and the topology") {
       require_same(complex_topology(book), complex_topology(c));
       CHECK(c.faces.size() <= s.faces.size());
       if (theta2 == 0.02) CHECK(coarse.coarse_triangles > 0);
-      std::size_t kept = 0;
-      for (double p : sk.face_priority) kept += p > theta2;
-      CHECK(kept == sk.protected_faces);
+      double kept = 0;  // area of the written triangles above theta2: the protected wedges
+      for (std::size_t f = 0; f < sk.faces.size(); ++f)
+        if (sk.face_priority[f] > theta2) {
+          const Vec3 &a = sk.points[sk.faces[f][0]], &b = sk.points[sk.faces[f][1]], &c = sk.points[sk.faces[f][2]];
+          kept += 0.5 * (b - a).cross(c - a).norm();
+        }
+      CHECK(kept == Approx(sk.protected_area).epsilon(1e-9));
       std::size_t curves = 0;
       for (std::size_t e = 0; e < sk.edges.size(); ++e) curves += sk.edge_curve[e] && sk.edge_priority[e] > theta1;
       CHECK(curves == sk.protected_curve_edges);

@@ -110,16 +110,14 @@ void BM_Skeleton(benchmark::State& state) {
     const Skeleton sk = compute_skeleton(run->graph, sub, run->loose_edges, o);
     refined = sk.refined_faces;
     last.seconds_refine = sk.seconds_refine;
-    last.seconds_fans = sk.seconds_fans;
     last.seconds_protect = sk.seconds_protect;
     last.seconds_contract = sk.seconds_contract;
     last.seconds_output = sk.seconds_output;
     faces = sk.faces.size();
   }
-  state.counters["refined_triangles"] = double(refined);
+  state.counters["wedges"] = double(refined);
   state.counters["skeleton_triangles"] = double(faces);
-  state.counters["s_fans"] = last.seconds_fans;
-  state.counters["s_edges"] = last.seconds_refine - last.seconds_fans;
+  state.counters["s_cells"] = last.seconds_refine;
   state.counters["s_protect"] = last.seconds_protect;
   state.counters["s_collapse"] = last.seconds_contract - last.seconds_protect;
   state.counters["s_output"] = last.seconds_output;

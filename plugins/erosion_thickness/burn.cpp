@@ -244,7 +244,8 @@ BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
       const Vec3 pv = g.pos[v];
       for_each_arc(g, v, [&](Index u, Index t) {
         if (node_burned[u]) return;
-        const Index ts = g.sector_begin[u] + g.local_sector(u, t);
+        const Index s0 = g.sector_begin[u];
+        const Index ts = g.sector_begin[u + 1] - s0 == 1 ? s0 : s0 + g.local_sector(u, t);  // most nodes: one sector
         if (sector_burned[ts]) return;
         ++r.relaxations;
         const double h = time + (g.pos[u] - pv).norm();

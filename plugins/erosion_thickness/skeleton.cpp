@@ -228,8 +228,7 @@ Skeleton compute_skeleton(const BurnGraph& g, const Subdivision& sub, const std:
   }
   out.refined_faces = nw;
   out.refined_edges = ne;
-  out.seconds_fans = std::chrono::duration<double>(Clock::now() - t0).count();
-  out.seconds_refine = out.seconds_fans;
+  out.seconds_refine = std::chrono::duration<double>(Clock::now() - t0).count();
   const auto t1 = Clock::now();
 
   // ---- protection ----------------------------------------------------------------------------

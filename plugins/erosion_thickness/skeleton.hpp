@@ -53,7 +53,7 @@ struct Skeleton {
   double protected_area = 0;
   std::size_t dropped_sheet_components = 0, dropped_curve_components = 0;
   std::size_t coarse_triangles = 0;  ///< input triangles written whole (as one triangle or a fan)
-  double seconds_refine = 0, seconds_fans = 0, seconds_protect = 0, seconds_contract = 0, seconds_output = 0;
+  double seconds_refine = 0, seconds_protect = 0, seconds_contract = 0, seconds_output = 0;  ///< K built; protection; protection + collapse; output
 };
 
 /// `loose_edges`: edges of the input complex that bound no triangle (vertex ids of the

@@ -15,6 +15,9 @@
 #include "erosion_thickness.hpp"
 #include "pure_complex.hpp"
 #include "voronoi_fixture.hpp"
+#ifdef MEDAX_ET_HAVE_VORONOI
+#include "interior_voronoi.hpp"
+#endif
 
 #include <medax/io.hpp>
 
@@ -40,7 +43,11 @@ const Input& input() {
     std::vector<Vec3> points;
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
       if (i % 7 < 4) points.push_back(mesh.vertices[i]);
-    data->complex = testing::interior_voronoi_complex(points, mesh);
+#ifdef MEDAX_ET_HAVE_VORONOI
+    data->complex = voronoi::interior_voronoi(points, mesh);  // the `voronoi` plugin's algorithm
+#else
+    data->complex = testing::interior_voronoi_complex(points, mesh);  // its test stand-in
+#endif
     make_pure_complex(data->complex, 1e-9);
     Vec3 lo = mesh.vertices[0], hi = lo;
     for (const Vec3& p : mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);

@@ -1,9 +1,13 @@
-// Real meshes (../shared/data/meshes): the interior-Voronoi medial complexes of fertility
-// (genus 4), hand and armadillo through ET, the medial curves and the skeletons: element counts
+// Real meshes (../shared/data/meshes): the interior-Voronoi medial complexes (the `voronoi`
+// plugin's algorithm when it is built, else the test stand-in) of fertility (genus 4), hand,
+// armadillo and knot through ET, the medial curves and the skeletons: element counts
 // before and after (printed), topology kept, a point or g cycles when theta1 = theta2 = inf.
 #include "erosion_thickness.hpp"
 #include "pure_complex.hpp"
 #include "voronoi_fixture.hpp"
+#ifdef MEDAX_ET_HAVE_VORONOI
+#include "interior_voronoi.hpp"
+#endif
 
 #include <medax/io.hpp>
 #include <medax/services/topology.hpp>
@@ -35,7 +39,11 @@ RealComplex load(const char* name) {
   Vec3 lo = mesh.vertices[0], hi = lo;
   for (const Vec3& p : mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   r.length = (hi - lo).maxCoeff();
-  r.complex = testing::interior_voronoi_complex(mesh);
+#ifdef MEDAX_ET_HAVE_VORONOI
+  r.complex = voronoi::interior_voronoi(mesh.vertices, mesh);  // the `voronoi` plugin's algorithm
+#else
+  r.complex = testing::interior_voronoi_complex(mesh);  // its stand-in
+#endif
   make_pure_complex(r.complex, 1e-9 * r.length);
   return r;
 }

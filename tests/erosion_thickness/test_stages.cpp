@@ -18,6 +18,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -272,5 +273,38 @@ TEST_CASE("The erosion_thickness package loads and runs in a pipeline", "[pipeli
     text << ply.rdbuf();
     CHECK(text.str().find(std::string(last) == "et_skeleton" ? "et_point" : "et_c") != std::string::npos);
   }
+}
+#endif
+
+#ifdef MEDAX_ET_PLUGIN_DIR
+TEST_CASE("pipelines/voronoi_et.yaml runs on the bundled mesh and keeps the topology", "[pipeline]") {
+  // Needs the conditioning, voronoi and evaluation packages too (built beside this one).
+  Registry registry;
+  const std::filesystem::path dir = MEDAX_ET_PLUGIN_DIR;
+  for (const char* package : {"conditioning", "voronoi", "evaluation", "erosion_thickness"}) {
+    const auto file = dir / (std::string("libmedax_") + package + ".so");
+    if (!std::filesystem::exists(file) || !registry.load_file(file)) {
+      WARN("package " << package << " is not built in " << dir << "; skipped");
+      return;
+    }
+  }
+  const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines" / "voronoi_et.yaml", registry);
+  RunOptions options;
+  options.out_dir = test::scratch_dir("voronoi_et_pipeline");
+  options.quiet = true;
+  const RunResult result = run_pipeline(config, options);
+  INFO(result.error);
+  REQUIRE(result.ok);
+  std::ifstream in(options.out_dir / "metrics.json");
+  std::stringstream json;
+  json << in.rdbuf();
+  // spot is genus 0: the skeleton is connected and has no cycle or cavity.
+  const MedialComplex skeleton = read_ma(options.out_dir / "medial.ma");
+  const services::ComplexTopology t = services::complex_topology(skeleton);
+  CHECK(t.b0 == 1);
+  CHECK(t.b1 == 0);
+  CHECK(t.b2 == 0);
+  CHECK(!skeleton.faces.empty());
+  CHECK(json.str().find("\"topology\"") != std::string::npos);
 }
 #endif

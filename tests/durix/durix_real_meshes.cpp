@@ -76,7 +76,7 @@ void run_one(const fs::path& path, double eps) {
   const auto st = services::surface_topology(r.surface);
   const bool chi_ok = 2 * mt.euler == st.complex.euler;
   std::printf("| %s | %zu | %zu (+%zu: %zu flips, %zu+%zu splits) | %lld | %.0f | %zu | %zu | %zu | %zu / %zu | %zu | "
-              "%zu+%zu | %zu | %s | %zu/%zu/%zu | %.2g | %.2f | %.2f | %.2f | %.2f |\n",
+              "%zu+%zu | %zu | %s | %zu/%zu/%zu | %.4f | %.2f | %.2f | %.2f | %.2f |\n",
               name.c_str(), mesh.vertices.size(), dm.vertices.size(), dm.vertices.size() - mesh.vertices.size(),
               conv.flips, conv.edge_splits, conv.face_splits, genus_in, st.genus(), rep.nodes, rep.medial_edges,
               rep.medial_faces, rep.sheets, rep.curve_sheets, rep.removed_vertices, rep.removals,

@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <random>
 
 using namespace medax;
@@ -77,6 +79,22 @@ void check_invariants(const Burned& b) {
       }
     CHECK(primes >= 1);
     CHECK(best == Approx(bt).epsilon(1e-12).margin(1e-12));
+    // The sectors with a primary arc form an exposing set: the other sectors leave H_v acyclic.
+    if (g.is_vertex(n)) {
+      std::vector<int> parent(g.vsec.h_nodes[n]);
+      std::iota(parent.begin(), parent.end(), 0);
+      std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+      bool acyclic = true;
+      for (Index s = g.sector_begin[n]; s < g.sector_begin[n + 1]; ++s)
+        if (r.prime_node[s] == kNone) {
+          const int a = find(g.vsec.end_a[s]), b = find(g.vsec.end_b[s]);
+          if (a == b) acyclic = false;
+          else parent[a] = b;
+        }
+      CHECK(acyclic);
+    } else {
+      CHECK(g.sector_begin[n + 1] - g.sector_begin[n] - primes <= 1);  // k parallel sectors: one may stay
+    }
   }
 }
 
@@ -153,13 +171,21 @@ TEST_CASE("Three-page book: seam and page burn times match the notes") {
   check_invariants(b);
 }
 
-TEST_CASE("Varying Lipschitz radius: invariants hold and scaling scales BT") {
+TEST_CASE("Varying Lipschitz radius: invariants hold and rigid motions and scaling act on BT as they should") {
   auto radius = [](const Vec3& p) { return 0.1 + 0.3 * std::sin(3 * p.x()) * std::cos(2 * p.y()) * 0.5 + 0.15; };
   const MedialComplex mc = make_book(2.0, 0.7, 1.3, 0.0, 16, 8);
   MedialComplex varied = mc;
   for (std::size_t v = 0; v < varied.num_vertices(); ++v) varied.radii[v] = radius(varied.centres[v]);
   const Burned b = burn_complex(varied, 0.03);
   check_invariants(b);
+
+  // Rigid motions do not change BT (up to round-off).
+  MedialComplex rotated = varied;
+  const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (Vec3& p : rotated.centres) p = rot * p + Vec3(0.3, 0.1, -2);
+  const Burned rb = burn_complex(rotated, 0.03);
+  REQUIRE(rb.g().num_nodes() == b.g().num_nodes());
+  for (Index n = 0; n < b.g().num_nodes(); ++n) CHECK(rb.r().bt[n] == Approx(b.r().bt[n]).epsilon(1e-9));
 
   MedialComplex scaled = varied;
   scaled.transform({2.5, Vec3(1, -2, 3)});

@@ -142,6 +142,22 @@ TEST_CASE("invariants on the capsule", "[durix][fixtures]") {
   for (const Vec3& c : r.medial.centres) CHECK(testing::capsule_axis_distance(c, 0.8) < 0.15);
 }
 
+TEST_CASE("one seed per component: two separate solids give two axes", "[durix]") {
+  SurfaceMesh a = testing::make_ellipsoid(1.0, 0.7, 0.5, 3), b = testing::make_box(0.5, 0.4, 0.3, 4);
+  const Index offset = static_cast<Index>(a.vertices.size());
+  for (const Vec3& p : b.vertices) a.vertices.push_back(p + Vec3(3.0, 0, 0));
+  for (const Tri& t : b.faces) a.faces.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const SurfaceMesh m = durix::test::to_delaunay(a);
+  const DurixResult r = run(m, 0.01);
+  check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
+  CHECK(r.report.components == 2);
+  const auto topology = services::complex_topology(r.medial);
+  CHECK(topology.b0 == 2);
+  CHECK(topology.euler == 2);
+  // Both solids have labelled faces: no face without a sheet.
+  for (int s : r.medial.face_props.labels.get("sheet")) CHECK(s >= 0);
+}
+
 TEST_CASE("epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
   const SurfaceMesh m = fixture("ellipsoid");
   DurixOptions options;

@@ -263,9 +263,9 @@ StageInfo PureComplexStage::describe() {
           "Clean a medial complex into a pure 2-complex: weld, drop degenerate/duplicate triangles, dangling "
           "edges and isolated vertices",
           kDoc,
-          {ParamSpec::real("weld_tolerance", 0.0,
+          {ParamSpec::real("weld_tolerance", 1e-9,
                            "Centres closer than this fraction of the complex's longest bbox side are welded "
-                           "(0: only identical centres)")
+                           "(0: only identical centres; Voronoi vertices of cospherical points differ by round-off)")
                .range(0, 0.1)
                .in_unit("fraction of complex max side")}};
 }

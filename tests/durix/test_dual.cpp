@@ -39,7 +39,7 @@ std::vector<HalfEdge> half_edges(const Dual& d) {
 
 }  // namespace
 
-TEST_CASE("half-edge navigation is consistent and oriented as the notes say", "[durix][dual]") {
+TEST_CASE("durix: half-edge navigation is consistent and oriented as the notes say", "[durix][dual]") {
   for (const std::string name : {"sphere", "ellipsoid", "box", "torus"}) {
     INFO(name);
     const SurfaceMesh m = durix::test::fixture(name);
@@ -92,7 +92,7 @@ TEST_CASE("half-edge navigation is consistent and oriented as the notes say", "[
   }
 }
 
-TEST_CASE("every sheet has one or two oriented sides", "[durix][dual]") {
+TEST_CASE("durix: every sheet has one or two oriented sides", "[durix][dual]") {
   for (const char* name : {"ellipsoid", "box", "torus", "capsule"}) {
     INFO(name);
     const SurfaceMesh m = durix::test::fixture(name);

@@ -75,7 +75,7 @@ TEST_CASE("delaunay_surface refuses instead of looping when it does not converge
   CHECK(services::surface_topology(out).genus() == 1);
 }
 
-TEST_CASE("the extraction refuses a non-Delaunay mesh", "[durix]") {
+TEST_CASE("durix: the extraction refuses a non-Delaunay mesh", "[durix]") {
   const SurfaceMesh raw = testing::make_torus(1.0, 0.35, 48, 16);
   REQUIRE(check_delaunay_mesh(raw).non_delaunay_faces > 0);
   const EpsilonOracle oracle(0.01);
@@ -87,7 +87,7 @@ TEST_CASE("the extraction refuses a non-Delaunay mesh", "[durix]") {
   }
 }
 
-TEST_CASE("invariants on the sphere", "[durix][fixtures]") {
+TEST_CASE("durix: invariants on the sphere", "[durix][fixtures]") {
   const SurfaceMesh m = fixture("sphere");
   const DurixResult r = run(m, 0.01);
   check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
@@ -104,7 +104,7 @@ TEST_CASE("invariants on the sphere", "[durix][fixtures]") {
   CHECK(biggest > 0.95);
 }
 
-TEST_CASE("invariants on the ellipsoid", "[durix][fixtures]") {
+TEST_CASE("durix: invariants on the ellipsoid", "[durix][fixtures]") {
   const SurfaceMesh m = fixture("ellipsoid");
   const DurixResult r = run(m, 0.01);
   check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
@@ -116,7 +116,7 @@ TEST_CASE("invariants on the ellipsoid", "[durix][fixtures]") {
   CHECK(worst < 0.15);
 }
 
-TEST_CASE("invariants on the box", "[durix][fixtures]") {
+TEST_CASE("durix: invariants on the box", "[durix][fixtures]") {
   const SurfaceMesh m = fixture("box");
   const DurixResult r = run(m, 0.01);
   check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
@@ -125,7 +125,7 @@ TEST_CASE("invariants on the box", "[durix][fixtures]") {
   CHECK(count_type(r.medial, kSingular) > 0);
 }
 
-TEST_CASE("invariants on the torus", "[durix][fixtures]") {
+TEST_CASE("durix: invariants on the torus", "[durix][fixtures]") {
   const SurfaceMesh m = fixture("torus");
   const DurixResult r = run(m, 0.01);
   check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
@@ -134,7 +134,7 @@ TEST_CASE("invariants on the torus", "[durix][fixtures]") {
   for (const Vec3& c : r.medial.centres) CHECK(testing::torus_axis_distance(c, 1.0) < 0.2);
 }
 
-TEST_CASE("invariants on the capsule", "[durix][fixtures]") {
+TEST_CASE("durix: invariants on the capsule", "[durix][fixtures]") {
   const SurfaceMesh m = fixture("capsule");
   const DurixResult r = run(m, 0.01);
   check_invariants(m, r, 0.01 * bbox_diagonal(m.vertices));
@@ -142,7 +142,7 @@ TEST_CASE("invariants on the capsule", "[durix][fixtures]") {
   for (const Vec3& c : r.medial.centres) CHECK(testing::capsule_axis_distance(c, 0.8) < 0.15);
 }
 
-TEST_CASE("one seed per component: two separate solids give two axes", "[durix]") {
+TEST_CASE("durix: one seed per component: two separate solids give two axes", "[durix]") {
   SurfaceMesh a = testing::make_ellipsoid(1.0, 0.7, 0.5, 3), b = testing::make_box(0.5, 0.4, 0.3, 4);
   const Index offset = static_cast<Index>(a.vertices.size());
   for (const Vec3& p : b.vertices) a.vertices.push_back(p + Vec3(3.0, 0, 0));
@@ -158,7 +158,7 @@ TEST_CASE("one seed per component: two separate solids give two axes", "[durix]"
   for (int s : r.medial.face_props.labels.get("sheet")) CHECK(s >= 0);
 }
 
-TEST_CASE("epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
+TEST_CASE("durix: epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
   const SurfaceMesh m = fixture("ellipsoid");
   DurixOptions options;
   options.simplify_boundaries = false;
@@ -169,7 +169,7 @@ TEST_CASE("epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
   CHECK(r.surface.faces.size() == m.faces.size());
 }
 
-TEST_CASE("a bump is kept exactly when epsilon is below its height", "[durix][bump]") {
+TEST_CASE("durix: a bump is kept exactly when epsilon is below its height", "[durix][bump]") {
   // Ellipsoid (1.2, 1, 0.8) with a Gaussian bump of height h on its top (z = 0.8). The bump is
   // kept when M_w still reaches above the ellipsoid by more than h/2 and the axis has nodes in
   // it (centres above z = 0.5: the ellipsoid's own axis lies in z = 0).
@@ -188,7 +188,7 @@ TEST_CASE("a bump is kept exactly when epsilon is below its height", "[durix][bu
   }
 }
 
-TEST_CASE("the extraction is deterministic", "[durix]") {
+TEST_CASE("durix: the extraction is deterministic", "[durix]") {
   const SurfaceMesh m = fixture("box");
   const DurixResult a = run(m, 0.01), b = run(m, 0.01);
   CHECK(a.medial.centres == b.medial.centres);
@@ -201,7 +201,7 @@ TEST_CASE("the extraction is deterministic", "[durix]") {
   CHECK(a.face_sheet == b.face_sheet);
 }
 
-TEST_CASE("the stages run through their parameters", "[durix][stages]") {
+TEST_CASE("durix: the stages run through their parameters", "[durix][stages]") {
   Shape shape;
   shape.mesh = testing::make_box(1.0, 0.6, 0.3, 5);
   BasicContext ctx(1);

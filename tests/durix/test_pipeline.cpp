@@ -36,7 +36,7 @@ RunResult run(Registry& registry, const std::filesystem::path& dir, const std::s
 
 }  // namespace
 
-TEST_CASE("the durix package runs as a pipeline and writes its outputs", "[durix][pipeline]") {
+TEST_CASE("durix: the durix package runs as a pipeline and writes its outputs", "[durix][pipeline]") {
   Registry registry;
   REQUIRE(registry.load_file(MEDAX_DURIX_PLUGIN));
   for (const char* name : {"delaunay_surface", "durix", "durix_epsilon"}) REQUIRE(registry.find(name));

@@ -246,10 +246,12 @@ void EtSkeletonStage::simplify(const Shape& shape, MedialComplex& medial, Contex
   o.phi2 = params().real("phi2") * L * L;
   o.phi1 = params().real("phi1") * L;
   const Skeleton sk = compute_skeleton(run->graph, sub, run->loose_edges, o);
-  ctx.info(fmt::format("refined complex: {} vertices, {} edges, {} triangles; protected {} triangles, {} curve "
-                       "edges ({} sheet and {} curve components below the size limits dropped)",
+  ctx.info(fmt::format("refined cell complex: {} points, {} 1-cells, {} wedges; protected {} wedges, {} curve "
+                       "cells ({} sheet and {} curve components below the size limits dropped); {:.3f} s to build, "
+                       "{:.3f} s to contract; {} input triangles written whole",
                        sk.refined_vertices, sk.refined_edges, sk.refined_faces, sk.protected_faces,
-                       sk.protected_curve_edges, sk.dropped_sheet_components, sk.dropped_curve_components));
+                       sk.protected_curve_edges, sk.dropped_sheet_components, sk.dropped_curve_components,
+                       sk.seconds_refine, sk.seconds_contract, sk.coarse_triangles));
   store_skeleton(sk, medial);
   const services::ComplexTopology after = services::complex_topology(medial);
   ctx.info("input: " + topology_text(before) + "; skeleton: " + topology_text(after));

@@ -12,7 +12,7 @@ namespace medax::voronoi {
 
 /// How circumcentres are classified against the mesh. Both are exact and give the same answer.
 enum class InsideMethod {
-  RayGrid,     ///< parity of +x rays over a (y, z) grid of the triangles (fast; ray_parity.hpp)
+  RayGrid,     ///< parity of +x rays over a (y, z) grid of the triangles (fast; services/ray_parity.hpp)
   SideOfMesh,  ///< CGAL::Side_of_triangle_mesh (medax::services::InsideTest), the reference
 };
 

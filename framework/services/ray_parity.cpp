@@ -1,4 +1,4 @@
-#include "ray_parity.hpp"
+#include <medax/services/ray_parity.hpp>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/blocked_range.h>
@@ -12,7 +12,7 @@
 #include <string>
 #include <tuple>
 
-namespace medax::voronoi {
+namespace medax::services {
 
 namespace {
 
@@ -335,4 +335,4 @@ std::vector<char> RayParityInside::inside(const std::vector<Vec3>& points, bool 
   return out;
 }
 
-}  // namespace medax::voronoi
+}  // namespace medax::services

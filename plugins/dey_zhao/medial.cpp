@@ -1,0 +1,698 @@
+#include "medial.hpp"
+
+#include "inner.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_group.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+
+namespace medax::dey_zhao {
+
+const char* to_string(InnerSelection s) {
+  switch (s) {
+    case InnerSelection::Auto: return "auto";
+    case InnerSelection::DelaunaySurface: return "delaunay_surface";
+    case InnerSelection::Mesh: return "mesh";
+    case InnerSelection::Normals: return "normals";
+    case InnerSelection::None: return "none";
+  }
+  return "?";
+}
+
+namespace {
+
+using services::DelaunayTetrahedralization;
+using Clock = std::chrono::steady_clock;
+constexpr std::int64_t kInf = DelaunayTetrahedralization::kInfinite;
+constexpr Index kNone = ~Index{0};
+// The six edges of a cell: corner positions i, j of the edge, then the other two.
+constexpr int kEdgePositions[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+constexpr std::size_t kBlock = 4096;  // cells per parallel work unit (fixed: output independent of the schedule)
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+template <typename Body>
+void for_blocks(std::size_t n, bool parallel, const Body& body) {
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  const auto run = [&](std::size_t b) { body(b, b * kBlock, std::min(n, (b + 1) * kBlock)); };
+  if (parallel) tbb::parallel_for(std::size_t{0}, blocks, run);
+  else for (std::size_t b = 0; b < blocks; ++b) run(b);
+}
+
+/// Sign of the permutation (e[0], e[1], e[2], e[3]) of (0, 1, 2, 3).
+constexpr int permutation_sign(const int* e) {
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += e[i] > e[j];
+  return inversions % 2 ? -1 : 1;
+}
+
+inline int position(const std::array<Index, 4>& corner, Index v) {
+  return corner[0] == v ? 0 : corner[1] == v ? 1 : corner[2] == v ? 2 : 3;
+}
+
+/// The three corners of facet k of a cell, in increasing position order.
+inline std::array<Index, 3> facet_corners(const std::array<Index, 4>& corner, int k) {
+  std::array<Index, 3> f{};
+  for (int j = 0, m = 0; j < 4; ++j)
+    if (j != k) f[m++] = corner[j];
+  return f;
+}
+
+/// Normal of facet k of a positively oriented cell, pointing out of the cell (not normalised).
+/// The direction comes from the cell's orientation (exact), not from a floating-point test.
+inline Vec3 outward_normal(const std::vector<Vec3>& P, const std::array<Index, 4>& corner, int k) {
+  const auto f = facet_corners(corner, k);
+  const Vec3 n = (P[f[1]] - P[f[0]]).cross(P[f[2]] - P[f[0]]);
+  // (f0, f1, f2, corner k) is the permutation moving k last: sign (-1)^(3-k). When positive,
+  // corner k is on the side n points to, so n points inwards.
+  return (k % 2 == 1) ? Vec3(-n) : n;
+}
+
+inline Vec3 unit(const Vec3& v) {
+  const double norm = v.norm();
+  return norm > 0 ? Vec3(v / norm) : Vec3::Zero();
+}
+
+/// Circumradius of the triangle (a, b, c): |u||v||u − v| / (2 |u × v|), u = b − a, v = c − a.
+inline double circumradius(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 u = b - a, v = c - a;
+  const double area2 = u.cross(v).norm();
+  return area2 > 0 ? u.norm() * v.norm() * (u - v).norm() / (2 * area2) : std::numeric_limits<double>::infinity();
+}
+
+/// max on non-negative doubles stored as their bit patterns (monotone for x ≥ 0, +inf included).
+inline void atomic_max(std::atomic<std::uint64_t>& slot, double value) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  std::uint64_t current = slot.load(std::memory_order_relaxed);
+  while (bits > current && !slot.compare_exchange_weak(current, bits, std::memory_order_relaxed)) {
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Passes B–C: poles and umbrellas.
+
+Umbrellas compute_umbrellas(const std::vector<Vec3>& P, const DelaunayTetrahedralization& dt, bool keep_triangles,
+                            bool parallel) {
+  const std::size_t n = dt.cells.size(), np = P.size();
+  const auto& cc = dt.circumcentres;
+  Umbrellas u;
+
+  // B. Pole: the farthest Voronoi vertex of V_p (ties: the lowest cell). On the hull, V_p is
+  // unbounded: v_p is the normalised sum of the unit outward normals of the hull facets at p,
+  // the directions of V_p's infinite edges.
+  std::vector<double> best(np, -1.0);
+  std::vector<Index> farthest(np, kNone);
+  std::vector<Vec3> hull(np, Vec3::Zero());
+  u.on_hull.assign(np, 0);
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto& corner = dt.cells[c];
+    for (int k = 0; k < 4; ++k) {
+      const Index x = corner[k];
+      const double d2 = (cc[c] - P[x]).squaredNorm();
+      if (d2 > best[x]) best[x] = d2, farthest[x] = static_cast<Index>(c);
+    }
+    for (int k = 0; k < 4; ++k)
+      if (dt.neighbours[c][k] == kInf) {
+        const Vec3 nt = unit(outward_normal(P, corner, k));
+        for (int j = 0; j < 4; ++j)
+          if (j != k) hull[corner[j]] += nt, u.on_hull[corner[j]] = 1;
+      }
+  }
+  u.pole_vector.resize(np);
+  for (std::size_t x = 0; x < np; ++x)
+    u.pole_vector[x] = u.on_hull[x] ? unit(hull[x])
+                       : farthest[x] != kNone ? unit(cc[farthest[x]] - P[x])
+                                              : Vec3(Vec3::Zero());
+
+  // C. Umbrella of p: the Delaunay triangles at p whose dual Voronoi edge crosses the plane
+  // through p normal to v_p. sgn'(x) = (x >= 0 ? + : −) is an infinitesimally shifted plane.
+  // Each facet is visited once, from its lower cell (or its only finite cell on the hull).
+  auto count = std::make_unique<std::atomic<std::uint32_t>[]>(np);
+  auto max_r = std::make_unique<std::atomic<std::uint64_t>[]>(np);
+  std::vector<std::uint16_t> mask(n, 0);  // bit 3k + m: facet k is in the umbrella of its m-th corner
+  const auto& v = u.pole_vector;
+  for_blocks(n, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const auto& corner = dt.cells[c];
+      std::uint16_t bits = 0;
+      for (int k = 0; k < 4; ++k) {
+        const std::int64_t nb = dt.neighbours[c][k];
+        if (nb != kInf && nb < static_cast<std::int64_t>(c)) continue;
+        const auto f = facet_corners(corner, k);
+        Vec3 ray = Vec3::Zero();
+        if (nb == kInf) ray = outward_normal(P, corner, k);
+        int hits = 0;
+        for (int m = 0; m < 3; ++m) {
+          const Index x = f[m];
+          const double s1 = (cc[c] - P[x]).dot(v[x]);
+          const double s2 = nb == kInf ? ray.dot(v[x]) : (cc[nb] - P[x]).dot(v[x]);
+          if ((s1 >= 0) != (s2 >= 0)) bits |= static_cast<std::uint16_t>(1u << (3 * k + m)), ++hits;
+        }
+        if (!hits) continue;
+        const double r = circumradius(P[f[0]], P[f[1]], P[f[2]]);
+        for (int m = 0; m < 3; ++m)
+          if (bits & (1u << (3 * k + m))) {
+            count[f[m]].fetch_add(1, std::memory_order_relaxed);
+            atomic_max(max_r[f[m]], r);
+          }
+      }
+      mask[c] = bits;
+    }
+  });
+  u.offsets.assign(np + 1, 0);
+  u.max_radius.resize(np);
+  for (std::size_t x = 0; x < np; ++x) {
+    u.offsets[x + 1] = u.offsets[x] + count[x].load(std::memory_order_relaxed);
+    const std::uint64_t bits = max_r[x].load(std::memory_order_relaxed);
+    std::memcpy(&u.max_radius[x], &bits, sizeof bits);
+  }
+  u.normals.resize(u.offsets[np]);
+  if (keep_triangles) u.triangles.resize(u.offsets[np]);
+  for (std::size_t x = 0; x < np; ++x) count[x].store(0, std::memory_order_relaxed);  // reused as cursors
+  for_blocks(n, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      if (!mask[c]) continue;
+      const auto& corner = dt.cells[c];
+      for (int k = 0; k < 4; ++k) {
+        if (!((mask[c] >> (3 * k)) & 7u)) continue;
+        const auto f = facet_corners(corner, k);
+        const Vec3 normal = unit((P[f[1]] - P[f[0]]).cross(P[f[2]] - P[f[0]]));
+        for (int m = 0; m < 3; ++m)
+          if (mask[c] & (1u << (3 * k + m))) {
+            const std::size_t slot = u.offsets[f[m]] + count[f[m]].fetch_add(1, std::memory_order_relaxed);
+            u.normals[slot] = normal;
+            if (keep_triangles) u.triangles[slot] = {f[0], f[1], f[2]};
+          }
+      }
+    }
+  });
+  return u;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pass D: the conditions.
+
+EdgeScores score_edge(const std::vector<Vec3>& P, const Umbrellas& u, Index p, Index q) {
+  EdgeScores s;
+  const Vec3 d = P[q] - P[p];
+  const double length = d.norm();
+  const Vec3 t = d / length;
+  const auto side = [&](Index x, double& sin_angle, double& ratio) {
+    const std::size_t begin = u.offsets[x], end = u.offsets[x + 1];
+    if (begin == end) return;
+    double smallest = 1;
+    for (std::size_t i = begin; i < end; ++i) smallest = std::min(smallest, std::abs(u.normals[i].dot(t)));
+    sin_angle = smallest;
+    ratio = length / u.max_radius[x];
+  };
+  side(p, s.sin_angle_p, s.ratio_p);
+  side(q, s.sin_angle_q, s.ratio_q);
+  return s;
+}
+
+namespace {
+int condition_bits(const EdgeScores& s, const MedialOptions& o, double sin_theta) {
+  // Angle [θ]: max over U_x of ∠(n, t) < π/2 − θ  ⇔  min |n·t̂| > sin θ (an empty U_x selects nothing).
+  // Ratio [ρ]: min over U_x of |pq| / R > ρ  ⇔  |pq| / max R > ρ.
+  int bits = 0;
+  if (o.angle_condition) {
+    if (s.sin_angle_p >= 0 && s.sin_angle_p > sin_theta) bits |= kAngleP;
+    if (s.sin_angle_q >= 0 && s.sin_angle_q > sin_theta) bits |= kAngleQ;
+  }
+  if (o.ratio_condition) {
+    if (s.ratio_p >= 0 && s.ratio_p > o.rho) bits |= kRatioP;
+    if (s.ratio_q >= 0 && s.ratio_q > o.rho) bits |= kRatioQ;
+  }
+  return bits;
+}
+}  // namespace
+
+int conditions(const EdgeScores& s, const MedialOptions& o) { return condition_bits(s, o, std::sin(o.theta)); }
+
+namespace {
+
+/// A selected Delaunay edge with the ring of cells around it, oriented along p → q.
+struct Selected {
+  Index p, q;
+  EdgeScores scores;
+  int bits;
+  bool open;                  ///< unbounded facet: the ring is a chain between two hull facets
+  std::uint32_t ring_begin, ring_size;
+  std::int64_t first_ray = -1, last_ray = -1;  ///< open: hull facet (cell·4 + k) at the ring's front and back
+};
+
+struct SelectionBlock {
+  std::vector<Selected> selected;
+  std::vector<Index> rings;
+  std::size_t angle = 0, ratio = 0, unbounded = 0, dropped = 0;
+};
+
+/// Walks around the edge (u, w) from cell c, first across the facet opposite `cross`, appending
+/// the cells after c to `out`. Returns 1 when back at c (a closed ring), 0 at the hull (`ray` =
+/// the hull facet reached), −1 at a cell lower than c (c does not own the edge).
+int walk(const DelaunayTetrahedralization& dt, Index c, Index u, Index w, Index cross, Index keep,
+         std::vector<Index>& out, std::int64_t& ray) {
+  Index current = c;
+  for (;;) {
+    const auto& corner = dt.cells[current];
+    const int k = position(corner, cross);
+    const std::int64_t next = dt.neighbours[current][k];
+    if (next == kInf) {
+      ray = static_cast<std::int64_t>(current) * 4 + k;
+      return 0;
+    }
+    if (next == static_cast<std::int64_t>(c)) return 1;
+    if (next < static_cast<std::int64_t>(c)) return -1;
+    out.push_back(static_cast<Index>(next));
+    const auto& n = dt.cells[next];
+    Index fresh = n[0];
+    for (Index x : n)
+      if (x != u && x != w && x != keep) fresh = x;
+    cross = keep;
+    keep = fresh;
+    current = static_cast<Index>(next);
+  }
+}
+
+void select_block(const std::vector<Vec3>& P, const DelaunayTetrahedralization& dt, const Umbrellas& u,
+                  const MedialOptions& options, std::size_t begin, std::size_t end, SelectionBlock& out) {
+  std::vector<Index> forward, backward;
+  const double sin_theta = std::sin(options.theta);
+  for (std::size_t ci = begin; ci < end; ++ci) {
+    const Index c = static_cast<Index>(ci);
+    const auto& corner = dt.cells[c];
+    const auto& nb = dt.neighbours[c];
+    for (const auto& e : kEdgePositions) {
+      // c's two ring neighbours around the edge are across the facets opposite the two other
+      // corners: when one is lower, c is not the lowest cell of the ring, which owns the edge.
+      const std::int64_t left = nb[e[2]], right = nb[e[3]];
+      if ((left != kInf && left < static_cast<std::int64_t>(c)) || (right != kInf && right < static_cast<std::int64_t>(c)))
+        continue;
+      const Index uu = corner[e[0]], ww = corner[e[1]];
+      const Index p = std::min(uu, ww), q = std::max(uu, ww);
+      const EdgeScores scores = score_edge(P, u, p, q);
+      const int bits = condition_bits(scores, options, sin_theta);
+      if (!bits) continue;
+      // Orientation: for a positively oriented cell, orient(u, w, a, b) has the sign of the
+      // permutation e; when positive, a → b turns counter-clockwise about u → w, and crossing
+      // the facet opposite a walks on counter-clockwise.
+      const Index a = corner[e[2]], b = corner[e[3]];
+      const bool ccw = permutation_sign(e) > 0;
+      const Index cross = ccw ? a : b, keep = ccw ? b : a;
+      forward.assign(1, c);
+      std::int64_t last_ray = -1, first_ray = -1;
+      const int closed = walk(dt, c, uu, ww, cross, keep, forward, last_ray);
+      if (closed < 0) continue;
+      backward.clear();
+      if (closed == 0 && walk(dt, c, uu, ww, keep, cross, backward, first_ray) < 0) continue;
+      // c owns the edge: it is selected.
+      if (bits & (kAngleP | kAngleQ)) ++out.angle;
+      if (bits & (kRatioP | kRatioQ)) ++out.ratio;
+      const bool open = closed == 0;
+      if (open) {
+        ++out.unbounded;
+        if (options.unbounded == Unbounded::Drop) {
+          ++out.dropped;
+          continue;
+        }
+      }
+      Selected s{p, q, scores, bits, open, static_cast<std::uint32_t>(out.rings.size()), 0, first_ray, last_ray};
+      // The ring counter-clockwise about u → w: backward reversed, c, forward.
+      out.rings.insert(out.rings.end(), backward.rbegin(), backward.rend());
+      out.rings.insert(out.rings.end(), forward.begin(), forward.end());
+      s.ring_size = static_cast<std::uint32_t>(out.rings.size() - s.ring_begin);
+      if (uu != p) {  // orient along p → q instead
+        auto first = out.rings.begin() + s.ring_begin, last = out.rings.end();
+        if (open) {
+          std::reverse(first, last);
+          std::swap(s.first_ray, s.last_ray);
+        } else {
+          std::reverse(first + 1, last);  // keep the owner first
+        }
+      }
+      out.selected.push_back(s);
+    }
+  }
+}
+
+struct UnionFind {
+  std::vector<Index> parent;
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a), b = find(b);
+    if (a < b) parent[b] = a;
+    else if (b < a) parent[a] = b;
+  }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options, MedialReport* report) {
+  if (!input.points) throw std::invalid_argument("dey_zhao: no points");
+  const std::vector<Vec3>& P = *input.points;
+  MedialReport info;
+  auto t0 = Clock::now();
+
+  // Which inner selection can run, and its setup (overlapping the Delaunay tetrahedralization).
+  InnerSelection inner = options.inner;
+  const bool has_mesh = input.mesh && !input.mesh->faces.empty();
+  const bool has_normals = input.normals && input.normals->size() == P.size();
+  if (inner == InnerSelection::DelaunaySurface && !(has_mesh && input.points_are_mesh_vertices))
+    throw std::invalid_argument("inner selection `delaunay_surface` needs the mesh, with the points being its "
+                                "vertices (`points: vertices`)");
+  if (inner == InnerSelection::Mesh && !has_mesh)
+    throw std::invalid_argument("inner selection `mesh` needs a surface mesh");
+  if (inner == InnerSelection::Normals && !has_normals)
+    throw std::invalid_argument("inner selection `normals` needs one outward normal per point");
+  std::optional<MeshEdgeSide> mesh_side;
+  std::string mesh_side_error;
+  const bool try_surface = (inner == InnerSelection::Auto || inner == InnerSelection::DelaunaySurface) && has_mesh &&
+                           input.points_are_mesh_vertices;
+  const bool prepare_mesh = inner == InnerSelection::Mesh || (inner == InnerSelection::Auto && has_mesh && !try_surface);
+  const auto setup = [&] {
+    if (!prepare_mesh) return;
+    try {
+      mesh_side.emplace(*input.mesh);
+    } catch (const std::invalid_argument& e) {
+      if (inner == InnerSelection::Mesh) throw;
+      mesh_side_error = e.what();
+    }
+  };
+
+  // A. The Delaunay tetrahedralization and its circumcentres.
+  DelaunayTetrahedralization dt;
+  if (options.parallel && prepare_mesh) {
+    tbb::task_group group;
+    group.run(setup);
+    try {
+      dt = services::delaunay_tetrahedralize(P, {options.parallel});
+    } catch (...) {
+      group.wait();
+      throw;
+    }
+    group.wait();
+  } else {
+    setup();
+    dt = services::delaunay_tetrahedralize(P, {options.parallel});
+  }
+  const std::size_t n = dt.cells.size();
+  if (n >= kNone / 4) throw std::invalid_argument("too many Delaunay cells for 32-bit indices");
+  info.points = dt.vertex_point.size();
+  info.cells = n;
+  info.seconds_delaunay = seconds_since(t0);
+
+  // B–C. Poles and umbrellas.
+  t0 = Clock::now();
+  const Umbrellas u = compute_umbrellas(P, dt, false, options.parallel);
+  std::size_t hull_facets = 0;
+  for (const auto& nb : dt.neighbours)
+    for (std::int64_t x : nb) hull_facets += x == kInf;
+  for (Index x : dt.vertex_point) {
+    info.hull_points += u.on_hull[x] != 0;
+    info.empty_umbrellas += u.size(x) == 0;
+  }
+  // Euler: V − E + F − C = 1 for a triangulated ball, with F = (4C + H) / 2.
+  info.delaunay_edges = info.points + (4 * n + hull_facets) / 2 - n - 1;
+  info.seconds_umbrellas = seconds_since(t0);
+
+  // D–E. The conditions on every edge, from the lowest cell of its ring; rings of the selected.
+  t0 = Clock::now();
+  std::vector<SelectionBlock> blocks((n + kBlock - 1) / kBlock);
+  for_blocks(n, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    select_block(P, dt, u, options, begin, end, blocks[b]);
+  });
+  std::vector<Selected> selected;
+  std::vector<Index> rings;
+  {
+    std::size_t count = 0, ring_total = 0;
+    for (const auto& b : blocks) count += b.selected.size(), ring_total += b.rings.size();
+    selected.reserve(count);
+    rings.reserve(ring_total);
+    for (auto& b : blocks) {
+      const auto shift = static_cast<std::uint32_t>(rings.size());
+      for (Selected s : b.selected) {
+        s.ring_begin += shift;
+        selected.push_back(s);
+      }
+      rings.insert(rings.end(), b.rings.begin(), b.rings.end());
+      info.selected_angle += b.angle;
+      info.selected_ratio += b.ratio;
+      info.unbounded += b.unbounded;
+      info.unbounded_dropped += b.dropped;
+      info.selected += b.selected.size() + b.dropped;
+      b = SelectionBlock{};
+    }
+  }
+  info.seconds_filter = seconds_since(t0);
+
+  // F. Inner/outer selection.
+  t0 = Clock::now();
+  std::vector<char> keep(selected.size(), 1);
+  std::vector<char> cell_inside;
+  if (try_surface) {
+    std::size_t missing = 0;
+    bool labelled = false;
+    try {
+      labelled = label_cells_by_surface(dt, *input.mesh, cell_inside, missing);
+    } catch (const std::invalid_argument&) {
+      if (inner == InnerSelection::DelaunaySurface) throw;
+      info.inner_note = "the mesh triangles are Delaunay facets but their inside parity is inconsistent; ";
+    }
+    if (labelled) {
+      inner = InnerSelection::DelaunaySurface;
+      info.inner_note += "every mesh triangle is a Delaunay facet";
+    } else if (inner == InnerSelection::DelaunaySurface) {
+      throw std::invalid_argument("inner selection `delaunay_surface`: " + std::to_string(missing) + " of " +
+                                  std::to_string(input.mesh->faces.size()) +
+                                  " mesh triangles are not Delaunay facets of the points; use `inner: mesh`");
+    } else {
+      if (!labelled && missing)
+        info.inner_note += std::to_string(missing) + " mesh triangles are not Delaunay facets; ";
+      try {
+        mesh_side.emplace(*input.mesh);
+      } catch (const std::invalid_argument& e) {
+        mesh_side_error = e.what();
+      }
+    }
+  }
+  if (inner == InnerSelection::Auto) {
+    if (mesh_side) {
+      inner = InnerSelection::Mesh;
+      info.inner_note += "general closed mesh";
+    } else if (has_normals) {
+      inner = InnerSelection::Normals;
+      info.inner_note += (has_mesh ? "mesh unusable (" + mesh_side_error + "); " : std::string()) + "oriented normals";
+    } else {
+      inner = InnerSelection::None;
+      info.inner_note += (has_mesh ? "mesh unusable (" + mesh_side_error + "); " : std::string()) +
+                         "no mesh and no normals: inner and outer medial axis";
+    }
+  }
+  info.inner_used = inner;
+  switch (inner) {
+    case InnerSelection::DelaunaySurface:
+      for (std::size_t i = 0; i < selected.size(); ++i) {
+        const Selected& s = selected[i];
+        bool all = !s.open;
+        for (std::uint32_t k = 0; k < s.ring_size && all; ++k) all = cell_inside[rings[s.ring_begin + k]] != 0;
+        keep[i] = all;
+      }
+      break;
+    case InnerSelection::Mesh: {
+      std::vector<std::array<Index, 2>> edges(selected.size());
+      for (std::size_t i = 0; i < selected.size(); ++i) edges[i] = {selected[i].p, selected[i].q};
+      keep = mesh_side->inner(P, edges, options.parallel);
+      break;
+    }
+    case InnerSelection::Normals: {
+      const auto& N = *input.normals;
+      for (std::size_t i = 0; i < selected.size(); ++i) {
+        const Selected& s = selected[i];
+        const Vec3 d = P[s.q] - P[s.p];
+        keep[i] = N[s.p].dot(d) < 0 && N[s.q].dot(d) > 0;
+      }
+      break;
+    }
+    default: break;
+  }
+  for (char k : keep) info.outer += !k;
+  info.seconds_inner = seconds_since(t0);
+
+  // The output complex: facets with shared Voronoi vertices, fan-triangulated, and their closure.
+  t0 = Clock::now();
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  if (!P.empty())
+    for (int a = 0; a < 3; ++a) lo[a] = hi[a] = P[dt.vertex_point[0]][a];
+  for (Index x : dt.vertex_point)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], P[x][a]), hi[a] = std::max(hi[a], P[x][a]);
+  const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const auto& cc = dt.circumcentres;
+
+  // Facet vertices closer than the tolerance are merged (cospherical points: many cells, one
+  // circumcentre); each class is represented by its lowest cell.
+  const double tolerance = options.merge_tolerance * diagonal;
+  UnionFind classes;
+  bool merging = false;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    if (!keep[i]) continue;
+    const Selected& s = selected[i];
+    const Index* r = rings.data() + s.ring_begin;
+    for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+      if (s.open && k + 1 == s.ring_size) break;  // no Voronoi edge between the chain's two ends
+      const Index a = r[k], b = r[(k + 1) % s.ring_size];
+      if (a != b && (cc[a] - cc[b]).norm() <= tolerance) {
+        if (!merging) {
+          classes.parent.resize(n);
+          for (std::size_t c = 0; c < n; ++c) classes.parent[c] = static_cast<Index>(c);
+          merging = true;
+        }
+        classes.unite(a, b);
+      }
+    }
+  }
+  const auto representative = [&](Index c) { return merging ? classes.find(c) : c; };
+
+  // Vertex numbering: used cells in cell order, then clipped ray ends by (cell, facet).
+  std::vector<Index> cell_vertex(n, kNone);
+  std::vector<std::int64_t> rays;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    if (!keep[i]) continue;
+    const Selected& s = selected[i];
+    for (std::uint32_t k = 0; k < s.ring_size; ++k) cell_vertex[rings[s.ring_begin + k]] = 0;
+    if (s.open) rays.push_back(s.first_ray), rays.push_back(s.last_ray);
+  }
+  if (merging)  // a class's lowest cell is one of its used cells; it stands for the others
+    for (std::size_t c = 0; c < n; ++c)
+      if (cell_vertex[c] != kNone && classes.find(static_cast<Index>(c)) != c) {
+        cell_vertex[c] = kNone;
+        ++info.merged_vertices;
+      }
+  std::sort(rays.begin(), rays.end());
+  rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+  MedialComplex medial;
+  medial.generator_kind = options.generator_kind;
+  for (std::size_t c = 0; c < n; ++c) {
+    if (cell_vertex[c] == kNone) continue;
+    cell_vertex[c] = static_cast<Index>(medial.centres.size());
+    medial.centres.push_back(cc[c]);
+    medial.radii.push_back(dt.circumradii[c]);
+    std::array<Index, 4> g = dt.cells[c];
+    std::sort(g.begin(), g.end());
+    medial.generators.emplace_back(g.begin(), g.end());
+  }
+  const Index first_ray_vertex = static_cast<Index>(medial.centres.size());
+  const double ray_length = options.clip_factor * diagonal;
+  for (std::int64_t ray : rays) {
+    const Index c = static_cast<Index>(ray / 4);
+    const int k = static_cast<int>(ray % 4);
+    const auto f = facet_corners(dt.cells[c], k);
+    const Vec3 end = cc[c] + ray_length * unit(outward_normal(P, dt.cells[c], k));
+    medial.centres.push_back(end);
+    medial.radii.push_back((end - P[f[0]]).norm());
+    std::array<Index, 3> g = f;
+    std::sort(g.begin(), g.end());
+    medial.generators.emplace_back(g.begin(), g.end());
+  }
+  const auto ray_vertex = [&](std::int64_t ray) {
+    return first_ray_vertex + static_cast<Index>(std::lower_bound(rays.begin(), rays.end(), ray) - rays.begin());
+  };
+
+  struct EdgeRecord {
+    Index a, b;
+    int diagonal, clipped;
+    bool operator<(const EdgeRecord& o) const {
+      return a != o.a ? a < o.a : b != o.b ? b < o.b : diagonal != o.diagonal ? diagonal < o.diagonal : clipped > o.clipped;
+    }
+  };
+  std::vector<EdgeRecord> edges;
+  auto& polygon = medial.face_props.labels.add("polygon", 0);
+  auto& label_p = medial.face_props.labels.add("p", 0);
+  auto& label_q = medial.face_props.labels.add("q", 0);
+  auto& label_conditions = medial.face_props.labels.add("conditions", 0);
+  auto& label_unbounded = medial.face_props.labels.add("unbounded", 0);
+  auto& field_angle = medial.face_props.fields.add("angle", 0);
+  auto& field_ratio = medial.face_props.fields.add("ratio", 0);
+  std::vector<Index> cycle;
+  int facets = 0;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    if (!keep[i]) continue;
+    const Selected& s = selected[i];
+    cycle.clear();
+    if (s.open) cycle.push_back(ray_vertex(s.first_ray));
+    for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+      const Index vtx = cell_vertex[representative(rings[s.ring_begin + k])];
+      if (cycle.empty() || cycle.back() != vtx) cycle.push_back(vtx);
+    }
+    if (s.open) cycle.push_back(ray_vertex(s.last_ray));
+    while (cycle.size() > 1 && cycle.back() == cycle.front()) cycle.pop_back();
+    const std::size_t m = cycle.size();
+    const auto is_ray = [&](Index x) { return x >= first_ray_vertex; };
+    for (std::size_t k = 0; k < m && m > 1; ++k) {
+      const Index a = cycle[k], b = cycle[(k + 1) % m];
+      if (m == 2 && k == 1) break;  // a segment: one edge
+      if (a != b) edges.push_back({std::min(a, b), std::max(a, b), 0, is_ray(a) || is_ray(b)});
+    }
+    if (m < 3) {
+      ++info.degenerate_facets;
+      ++facets;
+      continue;
+    }
+    const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
+    const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
+    for (std::size_t k = 1; k + 1 < m; ++k) {
+      const Index a = cycle[0], b = cycle[k], c = cycle[k + 1];
+      if (k >= 2 && a != b) edges.push_back({std::min(a, b), std::max(a, b), 1, is_ray(a) || is_ray(b)});
+      if (a == b || b == c || a == c) continue;  // a non-consecutive repeat after merging
+      medial.faces.push_back({a, b, c});
+      polygon.push_back(facets);
+      label_p.push_back(static_cast<int>(s.p));
+      label_q.push_back(static_cast<int>(s.q));
+      label_conditions.push_back(s.bits);
+      label_unbounded.push_back(s.open ? 1 : 0);
+      field_angle.push_back(angle);
+      field_ratio.push_back(ratio);
+    }
+    ++facets;
+  }
+  info.facets = static_cast<std::size_t>(facets);
+  if (options.parallel) tbb::parallel_sort(edges.begin(), edges.end());
+  else std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end(),
+                          [](const EdgeRecord& x, const EdgeRecord& y) { return x.a == y.a && x.b == y.b; }),
+              edges.end());
+  medial.edges.reserve(edges.size());
+  auto& diagonal_label = medial.edge_props.labels.add("fan_diagonal", 0);
+  diagonal_label.reserve(edges.size());
+  for (const EdgeRecord& e : edges) {
+    medial.edges.push_back({e.a, e.b});
+    diagonal_label.push_back(e.diagonal);
+  }
+  if (options.unbounded == Unbounded::Clip) {
+    auto& clipped = medial.edge_props.labels.add("clipped", 0);
+    for (const EdgeRecord& e : edges) clipped.push_back(e.clipped);
+  }
+  info.seconds_complex = seconds_since(t0);
+  if (report) *report = info;
+  return medial;
+}
+
+}  // namespace medax::dey_zhao

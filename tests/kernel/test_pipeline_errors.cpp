@@ -234,6 +234,6 @@ TEST_CASE("malformed --set targets are a PipelineError", "[pipeline]") {
 TEST_CASE("a stage's own parameter check runs at validation and points at its params", "[pipeline]") {
   check_single(scratch_dir("pipeline_check_params"),
                with_input("stages:\n  - plugin: test_centroid\n  - plugin: test_radius_field\n"
-                          "    params: {field: two words}\n"),
-               {5, 13, {"'test_radius_field'", "one word"}});
+                          "    params: {field: \"\"}\n"),
+               {5, 13, {"'test_radius_field'", "must name the field"}});
 }

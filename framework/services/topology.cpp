@@ -1,0 +1,234 @@
+#include <medax/services/topology.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace medax::services {
+
+namespace {
+
+using Edge = std::array<Index, 2>;
+
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
+  Index find(Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  }
+  void unite(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// Symmetric difference of two sorted index lists (addition over Z/2).
+void add_mod2(std::vector<Index>& column, const std::vector<Index>& other, std::vector<Index>& scratch) {
+  scratch.clear();
+  std::set_symmetric_difference(column.begin(), column.end(), other.begin(), other.end(), std::back_inserter(scratch));
+  column.swap(scratch);
+}
+
+/// rank of ∂2 over Z/2; `face_edges` holds the (sorted) edge indices of each triangle.
+std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<Index, 3>>& face_edges) {
+  const std::size_t nf = face_edges.size();
+  // Edge -> incident triangles (CSR).
+  std::vector<std::size_t> start(num_edges + 1, 0);
+  for (const auto& fe : face_edges)
+    for (Index e : fe) ++start[e + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Index> incident(start.back());
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (Index e : face_edges[f]) incident[fill[e]++] = static_cast<Index>(f);
+  }
+  // Free-face collapses: a triangle owning an edge alone is independent of all the others.
+  std::vector<Index> count(num_edges);
+  for (std::size_t e = 0; e < num_edges; ++e) count[e] = static_cast<Index>(start[e + 1] - start[e]);
+  std::vector<char> alive(nf, 1);
+  std::vector<Index> queue;
+  for (std::size_t e = 0; e < num_edges; ++e)
+    if (count[e] == 1) queue.push_back(static_cast<Index>(e));
+  std::size_t rank = 0;
+  while (!queue.empty()) {
+    const Index e = queue.back();
+    queue.pop_back();
+    if (count[e] != 1) continue;
+    Index f = 0;
+    for (std::size_t k = start[e]; k < start[e + 1]; ++k)
+      if (alive[incident[k]]) {
+        f = incident[k];
+        break;
+      }
+    alive[f] = 0;
+    ++rank;
+    for (Index other : face_edges[f])
+      if (--count[other] == 1) queue.push_back(other);
+  }
+  // Column reduction of what is left (the triangles of possible 2-cycles: closed surfaces,
+  // books of pages...). Triangles are taken in breadth-first order across shared edges and
+  // edges ranked by first appearance in that order, with pivot = highest rank: a triangle that
+  // brings a new edge gets it as its pivot at once, and only the triangles closing a cycle
+  // need reducing. A closed surface then costs about F·√F, not F².
+  std::vector<Index> order;
+  {
+    std::vector<char> seen(nf, 0);
+    for (std::size_t seed = 0; seed < nf; ++seed) {
+      if (!alive[seed] || seen[seed]) continue;
+      seen[seed] = 1;
+      std::size_t head = order.size();
+      order.push_back(static_cast<Index>(seed));
+      while (head < order.size()) {
+        const Index f = order[head++];
+        for (Index e : face_edges[f])
+          for (std::size_t k = start[e]; k < start[e + 1]; ++k) {
+            const Index g = incident[k];
+            if (alive[g] && !seen[g]) {
+              seen[g] = 1;
+              order.push_back(g);
+            }
+          }
+      }
+    }
+  }
+  constexpr Index kUnranked = Index(-1);
+  std::vector<Index> edge_rank(num_edges, kUnranked);
+  Index next_rank = 0;
+  std::vector<std::int64_t> owner;
+  std::vector<std::vector<Index>> reduced;
+  std::vector<Index> column, scratch;
+  for (Index f : order) {
+    column.clear();
+    for (Index e : face_edges[f]) {
+      if (edge_rank[e] == kUnranked) {
+        edge_rank[e] = next_rank++;
+        owner.push_back(-1);
+      }
+      column.push_back(edge_rank[e]);
+    }
+    std::sort(column.begin(), column.end());
+    while (!column.empty() && owner[column.back()] >= 0)
+      add_mod2(column, reduced[static_cast<std::size_t>(owner[column.back()])], scratch);
+    if (column.empty()) continue;
+    owner[column.back()] = static_cast<std::int64_t>(reduced.size());
+    reduced.push_back(column);
+    ++rank;
+  }
+  return rank;
+}
+
+}  // namespace
+
+ComplexTopology complex_topology(std::size_t num_vertices, const std::vector<Segment>& edges,
+                                 const std::vector<Tri>& faces) {
+  const auto check = [num_vertices](Index v, const char* kind, std::size_t i) {
+    if (v >= num_vertices)
+      throw std::invalid_argument(std::string("topology: ") + kind + " " + std::to_string(i) + " refers to vertex " +
+                                  std::to_string(v) + " of " + std::to_string(num_vertices));
+  };
+  std::vector<std::array<Index, 3>> tris;
+  std::vector<Edge> all_edges;
+  tris.reserve(faces.size());
+  all_edges.reserve(edges.size() + 3 * faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    std::array<Index, 3> k = faces[f];
+    for (Index v : k) check(v, "face", f);
+    std::sort(k.begin(), k.end());
+    if (k[0] != k[1] && k[1] != k[2]) {
+      tris.push_back(k);
+      all_edges.insert(all_edges.end(), {{k[0], k[1]}, {k[1], k[2]}, {k[0], k[2]}});
+    } else if (k[0] != k[2]) {
+      all_edges.push_back({k[0], k[2]});
+    }
+  }
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const Segment& s = edges[e];
+    for (Index v : s) check(v, "edge", e);
+    if (s[0] != s[1]) all_edges.push_back({std::min(s[0], s[1]), std::max(s[0], s[1])});
+  }
+  std::sort(tris.begin(), tris.end());
+  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  std::sort(all_edges.begin(), all_edges.end());
+  all_edges.erase(std::unique(all_edges.begin(), all_edges.end()), all_edges.end());
+
+  ComplexTopology t;
+  t.vertices = num_vertices;
+  t.edges = all_edges.size();
+  t.faces = tris.size();
+  t.euler = static_cast<long long>(t.vertices) - static_cast<long long>(t.edges) + static_cast<long long>(t.faces);
+
+  UnionFind uf(num_vertices);
+  for (const Edge& e : all_edges) uf.unite(e[0], e[1]);
+  for (std::size_t v = 0; v < num_vertices; ++v)
+    if (uf.find(static_cast<Index>(v)) == v) ++t.b0;
+
+  const auto edge_index = [&](Index a, Index b) {
+    return static_cast<Index>(std::lower_bound(all_edges.begin(), all_edges.end(), Edge{a, b}) - all_edges.begin());
+  };
+  std::vector<std::array<Index, 3>> face_edges(tris.size());
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    const auto& k = tris[f];
+    face_edges[f] = {edge_index(k[0], k[1]), edge_index(k[1], k[2]), edge_index(k[0], k[2])};
+    std::sort(face_edges[f].begin(), face_edges[f].end());
+  }
+  const std::size_t rank2 = boundary_rank(all_edges.size(), face_edges);
+  const std::size_t rank1 = t.vertices - t.b0;
+  t.b2 = t.faces - rank2;
+  t.b1 = t.edges - rank1 - rank2;
+  return t;
+}
+
+ComplexTopology complex_topology(const MedialComplex& medial) {
+  return complex_topology(medial.num_vertices(), medial.edges, medial.faces);
+}
+
+double SurfaceTopology::genus() const {
+  if (!closed()) return -1;
+  return static_cast<double>(complex.b0) - 0.5 * static_cast<double>(complex.euler);
+}
+
+SurfaceTopology surface_topology(const SurfaceMesh& mesh) {
+  // Only the vertices some face uses.
+  std::vector<Index> remap(mesh.vertices.size(), Index(-1));
+  Index used = 0;
+  std::vector<Tri> faces(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Index v = mesh.faces[f][k];
+      if (v >= mesh.vertices.size())
+        throw std::invalid_argument("topology: face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
+                                    " of " + std::to_string(mesh.vertices.size()));
+      if (remap[v] == Index(-1)) remap[v] = used++;
+      faces[f][k] = remap[v];
+    }
+  SurfaceTopology s;
+  s.complex = complex_topology(used, {}, faces);
+  // Faces per edge (each distinct triangle once).
+  std::vector<std::array<Index, 3>> tris;
+  for (const Tri& f : faces) {
+    std::array<Index, 3> k = f;
+    std::sort(k.begin(), k.end());
+    if (k[0] != k[1] && k[1] != k[2]) tris.push_back(k);
+  }
+  std::sort(tris.begin(), tris.end());
+  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  std::vector<Edge> sides;
+  for (const auto& k : tris) sides.insert(sides.end(), {{k[0], k[1]}, {k[1], k[2]}, {k[0], k[2]}});
+  std::sort(sides.begin(), sides.end());
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j] == sides[i]) ++j;
+    if (j - i == 1) ++s.boundary_edges;
+    if (j - i >= 3) ++s.nonmanifold_edges;
+    i = j;
+  }
+  return s;
+}
+
+}  // namespace medax::services

@@ -1,0 +1,161 @@
+#include "reconstruction.hpp"
+
+#include <medax/services/closest_point.hpp>
+#include <medax/services/kdtree.hpp>
+#include <medax/services/sampling.hpp>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+namespace medax::evaluation {
+
+namespace {
+
+const std::vector<Vec3>& surface_points(const Shape& shape) {
+  return shape.mesh.empty() ? shape.samples.points : shape.mesh.vertices;
+}
+
+std::pair<Vec3, Vec3> bbox(const std::vector<Vec3>& points) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+/// Smallest positive side of a box, or its diagonal when it is flat in every direction.
+double smallest_side(const Vec3& lo, const Vec3& hi) {
+  double side = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+    if (hi[k] - lo[k] > 0) side = std::min(side, hi[k] - lo[k]);
+  return std::isfinite(side) ? side : (hi - lo).norm();
+}
+
+}  // namespace
+
+double envelope_step(const Shape& shape, const services::Envelope& envelope, const ReconstructionOptions& options) {
+  if (options.step > 0) return options.step;
+  const auto [slo, shi] = bbox(surface_points(shape));
+  const auto [elo, ehi] = envelope.bounds();
+  // The envelope's own size too, so that an envelope much smaller than the shape is still
+  // sampled at `resolution` points across.
+  return std::min(smallest_side(slo, shi), smallest_side(elo, ehi)) / std::max(1, options.resolution);
+}
+
+Metrics ReconstructionResult::metrics() const {
+  Metrics m;
+  const auto both = [&](const std::string& name, double value) {
+    m[name] = value;
+    m[name + "_pct"] = diagonal > 0 ? 100.0 * value / diagonal : 0.0;
+  };
+  m["bbox_diagonal"] = diagonal;
+  m["envelope_step"] = step;
+  m["envelope_primitives"] = static_cast<double>(primitives);
+  m["envelope_samples"] = static_cast<double>(envelope.size());
+  m["envelope_area"] = envelope_area;
+  m["surface_samples"] = static_cast<double>(surface_samples);
+  m["surface_inside_fraction"] = surface_inside_fraction;
+  both("surface_to_envelope_max", surface_to_envelope_max);
+  both("surface_to_envelope_mean", surface_to_envelope_mean);
+  both("envelope_to_surface_max", envelope_to_surface_max);
+  both("envelope_to_surface_mean", envelope_to_surface_mean);
+  both("hausdorff", hausdorff());
+  both("eps1", eps1());
+  both("eps2", eps2());
+  both("eps", eps());
+  return m;
+}
+
+ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
+                                            const ReconstructionOptions& options, std::mt19937_64& rng,
+                                            const Progress& progress) {
+  const auto report = [&](double f, std::string_view what) {
+    if (progress) progress(f, what);
+  };
+  const bool has_mesh = !shape.mesh.empty();
+  if (!has_mesh && shape.samples.empty())
+    throw std::invalid_argument("reconstruction: the shape has neither a mesh nor samples to compare with");
+  if (medial.num_vertices() == 0) throw std::invalid_argument("reconstruction: the medial complex is empty");
+
+  ReconstructionResult result;
+  {
+    const auto [lo, hi] = bbox(surface_points(shape));
+    result.diagonal = (hi - lo).norm();
+  }
+
+  // Surface samples: the mesh vertices that faces use (as the VMAS code does) and optional
+  // area-uniform samples; without a mesh, the shape's samples.
+  std::vector<Vec3> surface;
+  if (has_mesh) {
+    if (options.use_vertices) {
+      std::vector<char> used(shape.mesh.vertices.size(), 0);
+      for (const Tri& f : shape.mesh.faces)
+        for (Index v : f) used.at(v) = 1;
+      for (std::size_t v = 0; v < used.size(); ++v)
+        if (used[v]) surface.push_back(shape.mesh.vertices[v]);
+    }
+    if (options.uniform_samples > 0) {
+      const OrientedSamples s = services::sample_uniform(shape.mesh, options.uniform_samples, rng);
+      surface.insert(surface.end(), s.points.begin(), s.points.end());
+    }
+  } else {
+    surface = shape.samples.points;
+  }
+  if (surface.empty())
+    throw std::invalid_argument("reconstruction: no surface samples (vertices: false and surface_samples: 0)");
+  result.surface_samples = surface.size();
+
+  report(0.0, "envelope");
+  const services::Envelope envelope(medial);
+  result.primitives = envelope.primitives().size();
+  result.step = envelope_step(shape, envelope, options);
+  result.envelope = envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); });
+  result.envelope_area = result.envelope.total_area();
+
+  // Surface -> envelope.
+  report(0.65, "surface to envelope");
+  std::vector<double> phi;
+  const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi);
+  std::size_t inside = 0;
+  double sum = 0, mx = 0;
+  for (std::size_t i = 0; i < surface.size(); ++i) {
+    if (phi[i] < 0) ++inside;
+    sum += s2e[i];
+    mx = std::max(mx, s2e[i]);
+  }
+  result.surface_inside_fraction = static_cast<double>(inside) / static_cast<double>(surface.size());
+  result.surface_to_envelope_max = mx;
+  result.surface_to_envelope_mean = sum / static_cast<double>(surface.size());
+
+  // Envelope -> surface.
+  report(0.75, "envelope to surface");
+  if (result.envelope.size() > 0) {
+    if (has_mesh) {
+      const services::SurfaceDistance distance(shape.mesh);
+      result.envelope_distances = distance.distances(result.envelope.points);
+    } else {
+      const services::PointIndex index(shape.samples.points);
+      result.envelope_distances.resize(result.envelope.size());
+      for (std::size_t i = 0; i < result.envelope.size(); ++i)
+        result.envelope_distances[i] = index.nearest(result.envelope.points[i]).second;
+    }
+    double weighted = 0, area = 0;
+    mx = 0;
+    for (std::size_t i = 0; i < result.envelope.size(); ++i) {
+      weighted += result.envelope.areas[i] * result.envelope_distances[i];
+      area += result.envelope.areas[i];
+      mx = std::max(mx, result.envelope_distances[i]);
+    }
+    result.envelope_to_surface_max = mx;
+    result.envelope_to_surface_mean = area > 0 ? weighted / area : 0.0;
+  }
+  report(1.0, "done");
+  return result;
+}
+
+}  // namespace medax::evaluation

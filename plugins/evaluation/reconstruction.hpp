@@ -1,0 +1,50 @@
+#pragma once
+// Reconstruction error of a medial complex: distances between the input surface S and the
+// boundary of the complex's sphere/cone/slab envelope E (docs/plugins/evaluation.md).
+#include <medax/metrics.hpp>
+#include <medax/services/envelope.hpp>
+#include <medax/surface.hpp>
+
+#include <functional>
+#include <random>
+#include <string_view>
+
+namespace medax::evaluation {
+
+struct ReconstructionOptions {
+  int resolution = 150;             ///< envelope grid step = smallest bbox side / resolution
+  double step = 0;                  ///< absolute grid step; 0 = from `resolution`
+  bool use_vertices = true;         ///< surface samples include the mesh vertices
+  std::size_t uniform_samples = 0;  ///< plus this many area-uniform surface samples
+};
+
+struct ReconstructionResult {
+  double diagonal = 0;  ///< bbox diagonal of the input surface (the % normaliser)
+  double step = 0;      ///< envelope grid step used
+  std::size_t primitives = 0, surface_samples = 0;
+  double surface_inside_fraction = 0;  ///< fraction of surface samples strictly inside E
+  double surface_to_envelope_max = 0, surface_to_envelope_mean = 0;  ///< over surface samples
+  double envelope_to_surface_max = 0, envelope_to_surface_mean = 0;  ///< over ∂E, by area
+  double envelope_area = 0;
+  services::EnvelopeSamples envelope;       ///< the points of ∂E used
+  std::vector<double> envelope_distances;   ///< their distances to S
+
+  double hausdorff() const { return std::max(surface_to_envelope_max, envelope_to_surface_max); }
+  double eps1() const { return surface_to_envelope_mean; }  ///< MSD ε̄¹
+  double eps2() const { return envelope_to_surface_mean; }  ///< MSD ε̄²
+  double eps() const { return std::max(eps1(), eps2()); }   ///< MSD ε̄ (two-sided)
+  Metrics metrics() const;
+};
+
+using Progress = std::function<void(double, std::string_view)>;
+
+/// Measures `medial` against the shape's mesh (or, without a mesh, its samples as a point
+/// cloud). Throws std::invalid_argument when there is nothing to measure.
+ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
+                                            const ReconstructionOptions& options, std::mt19937_64& rng,
+                                            const Progress& progress = {});
+
+/// The grid step `options` give for this shape and envelope (see ReconstructionOptions).
+double envelope_step(const Shape& shape, const services::Envelope& envelope, const ReconstructionOptions& options);
+
+}  // namespace medax::evaluation

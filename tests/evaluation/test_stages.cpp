@@ -1,0 +1,283 @@
+// The evaluation package: reconstruction metrics on shapes whose envelope distance is known,
+// counts on a hand-built complex, topology, and the package loaded and run in a pipeline.
+#include "counts.hpp"
+#include "reconstruction.hpp"
+#include "stages.hpp"
+
+#include <medax/io.hpp>
+#include <medax/kernel/pipeline.hpp>
+#include <medax/kernel/registry.hpp>
+#include <medax/kernel/runner.hpp>
+#include <medax/services/sampling.hpp>
+#include <medax/testing/shapes.hpp>
+#include <test_paths.hpp>
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace medax;
+
+namespace {
+
+/// Largest distance from the exact sphere of radius r (centre 0) to an inscribed icosphere:
+/// r minus the smallest distance from the centre to a face plane.
+double icosphere_sag(const SurfaceMesh& m, double r) {
+  double inner = r;
+  for (const Tri& f : m.faces) {
+    const Vec3 n = (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).normalized();
+    inner = std::min(inner, std::abs(n.dot(m.vertices[f[0]])));
+  }
+  return r - inner;
+}
+
+MedialComplex one_sphere(double r) {
+  MedialComplex mc;
+  mc.add_vertex(Vec3::Zero(), r);
+  return mc;
+}
+
+Metrics run_stage(EvaluationStage& stage, const std::vector<ParamSpec>& specs, const Shape& shape,
+                  const MedialComplex& mc, const std::map<std::string, ParamValue>& changes = {},
+                  std::uint64_t seed = 1) {
+  ParamSet params = default_params(specs);
+  for (const auto& [name, value] : changes) params.set(name, value);
+  stage.configure(params);
+  BasicContext ctx(seed);
+  return stage.evaluate(shape, mc, ctx);
+}
+
+Metrics reconstruction(const Shape& shape, const MedialComplex& mc, const std::map<std::string, ParamValue>& changes = {},
+                       std::uint64_t seed = 1) {
+  evaluation::Reconstruction stage;
+  return run_stage(stage, evaluation::Reconstruction::describe().params, shape, mc, changes, seed);
+}
+
+}  // namespace
+
+TEST_CASE("a sphere against the one-vertex complex of the same radius: only the tessellation error", "[reconstruction]") {
+  Shape shape;
+  shape.mesh = testing::make_sphere(1.0, 5);
+  const double sag = icosphere_sag(shape.mesh, 1.0);
+  const Metrics m = reconstruction(shape, one_sphere(1.0));
+  INFO("sag " << sag << ", hausdorff " << m.at("hausdorff"));
+  // The mesh vertices lie on the sphere: surface → envelope is zero.
+  CHECK(m.at("surface_to_envelope_max") < 1e-12);
+  CHECK(m.at("eps1") < 1e-12);
+  // The envelope → mesh distances are the tessellation's sag, nothing more.
+  CHECK(m.at("envelope_to_surface_max") <= sag + 1e-9);
+  CHECK(m.at("envelope_to_surface_max") >= 0.5 * sag);
+  CHECK(m.at("eps2") < sag);
+  CHECK(m.at("hausdorff_pct") == Approx(100 * m.at("hausdorff") / m.at("bbox_diagonal")));
+  CHECK(m.at("hausdorff_pct") < 0.01);
+  CHECK(m.at("eps") == Approx(std::max(m.at("eps1"), m.at("eps2"))));
+  CHECK(m.at("envelope_area") == Approx(4 * M_PI).epsilon(0.005));
+  CHECK(m.at("envelope_primitives") == 1);
+  CHECK(m.at("surface_samples") == shape.mesh.vertices.size());
+}
+
+TEST_CASE("a sphere of radius R against the one-vertex complex of radius R' gives |R - R'| both ways", "[reconstruction]") {
+  Shape shape;
+  shape.mesh = testing::make_sphere(1.0, 5);
+  const double sag = icosphere_sag(shape.mesh, 1.0);
+  for (const double r : {0.8, 1.25}) {
+    const Metrics m = reconstruction(shape, one_sphere(r));
+    const double gap = std::abs(1.0 - r);
+    const double step = m.at("envelope_step");
+    INFO("R' = " << r << ", step " << step);
+    // Outside the envelope (R' < R) the distance is exact; inside (R' > R) it is the distance to
+    // the nearest boundary point, within a fraction of the step.
+    const double tol_s2e = r < 1 ? 1e-12 : step * step / gap;
+    CHECK(m.at("surface_to_envelope_max") == Approx(gap).margin(tol_s2e));
+    CHECK(m.at("surface_to_envelope_mean") == Approx(gap).margin(tol_s2e));
+    CHECK(m.at("surface_to_envelope_mean") >= gap - 1e-12);
+    CHECK(m.at("surface_inside_fraction") == (r > 1 ? 1.0 : 0.0));
+    // The envelope is the exact sphere R': its distance to the mesh is |R − R'| up to the sag.
+    CHECK(m.at("envelope_to_surface_max") == Approx(gap).margin(sag + 1e-9));
+    CHECK(m.at("envelope_to_surface_mean") == Approx(gap).margin(sag + 1e-9));
+    CHECK(m.at("hausdorff") == Approx(gap).margin(sag + tol_s2e));
+    CHECK(m.at("eps") == Approx(gap).margin(sag + tol_s2e));
+    CHECK(m.at("envelope_area") == Approx(4 * M_PI * r * r).epsilon(0.005));
+  }
+}
+
+TEST_CASE("a capsule against its two spheres and cone gives the tessellation error only", "[reconstruction]") {
+  const double radius = 0.3, half = 0.7;
+  Shape shape;
+  shape.mesh = testing::make_capsule(radius, half, 128);
+  // How far the mesh strays inside the exact capsule, measured at face centroids (the deepest
+  // point of a flat triangle under a convex surface, up to second order).
+  double sag = 0;
+  for (const Tri& f : shape.mesh.faces) {
+    const Vec3 g = (shape.mesh.vertices[f[0]] + shape.mesh.vertices[f[1]] + shape.mesh.vertices[f[2]]) / 3.0;
+    sag = std::max(sag, radius - testing::capsule_axis_distance(g, half));
+  }
+  MedialComplex mc;
+  mc.add_vertex({0, 0, -half}, radius);
+  mc.add_vertex({0, 0, half}, radius);
+  mc.add_edge(0, 1);
+  const Metrics m = reconstruction(shape, mc);
+  INFO("sag " << sag << ", hausdorff " << m.at("hausdorff"));
+  CHECK(m.at("surface_to_envelope_max") < 1e-12);
+  CHECK(m.at("envelope_to_surface_max") <= 1.5 * sag);
+  CHECK(m.at("hausdorff_pct") < 100 * 1.5 * sag / m.at("bbox_diagonal"));
+  CHECK(m.at("envelope_area") == Approx(4 * M_PI * radius * radius + 4 * M_PI * radius * half).epsilon(0.005));
+
+  SECTION("the same envelope split into a chain of spheres and cones measures the same") {
+    MedialComplex chain;
+    for (int i = 0; i <= 10; ++i) chain.add_vertex({0, 0, -half + 2 * half * i / 10.0}, radius);
+    for (Index i = 0; i < 10; ++i) chain.add_edge(i, i + 1);
+    const Metrics c = reconstruction(shape, chain);
+    CHECK(c.at("hausdorff") == Approx(m.at("hausdorff")).margin(1e-9));
+    CHECK(c.at("eps2") == Approx(m.at("eps2")).margin(1e-9));
+  }
+}
+
+TEST_CASE("a complex that misses part of the shape: surface to envelope sees it", "[reconstruction]") {
+  // Half a capsule's axis: the far hemisphere is uncovered by 2·half_length / 2.
+  const double radius = 0.3, half = 0.7;
+  Shape shape;
+  shape.mesh = testing::make_capsule(radius, half, 96);
+  MedialComplex mc;
+  mc.add_vertex({0, 0, -half}, radius);
+  mc.add_vertex({0, 0, 0}, radius);
+  mc.add_edge(0, 1);
+  const Metrics m = reconstruction(shape, mc);
+  // The top pole is at distance half from the envelope's top.
+  CHECK(m.at("surface_to_envelope_max") == Approx(half).margin(1e-9));
+  // The top of the envelope, (0, 0, radius), is `radius` from the capsule wall.
+  CHECK(m.at("envelope_to_surface_max") == Approx(radius).margin(0.01));
+  CHECK(m.at("hausdorff") == Approx(half).margin(1e-9));
+}
+
+TEST_CASE("reconstruction options: uniform surface samples, seeding, point clouds, steps", "[reconstruction]") {
+  Shape shape;
+  shape.mesh = testing::make_sphere(1.0, 4);
+  const MedialComplex mc = one_sphere(0.9);
+  SECTION("uniform samples add to the vertices and are seeded") {
+    const Metrics a = reconstruction(shape, mc, {{"surface_samples", 5000LL}}, 3);
+    const Metrics b = reconstruction(shape, mc, {{"surface_samples", 5000LL}}, 3);
+    CHECK(a.at("surface_samples") == shape.mesh.vertices.size() + 5000);
+    CHECK(a == b);
+    // Samples inside faces are closer to the centre than the vertices: at most 0.1, at least 0.1 − sag.
+    CHECK(a.at("surface_to_envelope_max") == Approx(0.1).margin(1e-12));
+    CHECK(a.at("surface_to_envelope_mean") < 0.1);
+  }
+  SECTION("only uniform samples") {
+    const Metrics a = reconstruction(shape, mc, {{"vertices", false}, {"surface_samples", 2000LL}});
+    CHECK(a.at("surface_samples") == 2000);
+  }
+  SECTION("a point cloud without a mesh") {
+    Shape cloud;
+    cloud.samples = services::vertex_samples(shape.mesh);
+    const Metrics a = reconstruction(cloud, mc);
+    CHECK(a.at("surface_to_envelope_max") == Approx(0.1).margin(1e-12));
+    CHECK(a.at("envelope_to_surface_max") >= 0.1 - 1e-9);
+  }
+  SECTION("an absolute step overrides the resolution") {
+    const Metrics a = reconstruction(shape, mc, {{"step", 0.05}});
+    CHECK(a.at("envelope_step") == 0.05);
+    const Metrics b = reconstruction(shape, mc, {{"resolution", 40LL}});
+    CHECK(b.at("envelope_step") == Approx(1.8 / 40));  // the envelope's side is the smaller
+  }
+}
+
+TEST_CASE("reconstruction refuses what it cannot measure", "[reconstruction]") {
+  evaluation::Reconstruction stage;
+  ParamSet params = default_params(evaluation::Reconstruction::describe().params);
+  params.set("vertices", false);
+  stage.configure(params);
+  Scene scene;
+  scene.shape.mesh = testing::make_sphere(1.0, 1);
+  CHECK_THROWS_AS(stage.prepare(scene), std::invalid_argument);  // no medial complex
+  scene.medial = MedialComplex{};
+  CHECK_THROWS_AS(stage.prepare(scene), std::invalid_argument);  // empty complex
+  scene.medial = one_sphere(1.0);
+  CHECK_THROWS_WITH(stage.prepare(scene), Catch::Contains("surface_samples"));
+  params.set("vertices", true);
+  stage.configure(params);
+  CHECK_NOTHROW(stage.prepare(scene));
+}
+
+TEST_CASE("counts on a small hand-built complex", "[counts]") {
+  MedialComplex mc;
+  for (int v = 0; v < 8; ++v) mc.add_vertex(Vec3(v, v % 2, 0), 0.1);
+  mc.add_face(0, 1, 2);
+  mc.add_face(1, 2, 3);
+  mc.add_face(2, 1, 0);  // duplicate of the first
+  mc.add_edge(0, 1);     // a triangle side: not a unique edge
+  mc.add_edge(3, 4);     // unique
+  mc.add_edge(4, 4);     // degenerate: ignored
+  mc.add_face(4, 5, 5);  // degenerate triangle: the unique edge 4-5
+  mc.add_edge(5, 6);     // unique; vertex 7 stays isolated
+  evaluation::Counts stage;
+  const Metrics m = run_stage(stage, evaluation::Counts::describe().params, Shape{}, mc);
+  CHECK(m.at("vertices") == 8);
+  CHECK(m.at("faces") == 2);
+  CHECK(m.at("unique_edges") == 3);
+  CHECK(m.at("edges") == 8);  // 5 triangle sides + 3 unique
+  CHECK(m.at("isolated_vertices") == 1);
+  CHECK(m.at("N_d") == 8 + 3 + 2);
+  CHECK(m.at("N_c") == 4 * 8);
+}
+
+TEST_CASE("topology stage: a ring complex inside a torus", "[topology]") {
+  Shape shape;
+  shape.mesh = testing::make_torus(1.0, 0.3, 48, 16);
+  MedialComplex ring;
+  for (int i = 0; i < 12; ++i) ring.add_vertex(Vec3(std::cos(i * M_PI / 6), std::sin(i * M_PI / 6), 0), 0.3);
+  for (Index i = 0; i < 12; ++i) ring.add_edge(i, (i + 1) % 12);
+  evaluation::Topology stage;
+  const Metrics m = run_stage(stage, evaluation::Topology::describe().params, shape, ring);
+  CHECK(m.at("components") == 1);
+  CHECK(m.at("euler") == 0);
+  CHECK(m.at("b0") == 1);
+  CHECK(m.at("b1") == 1);
+  CHECK(m.at("b2") == 0);
+  CHECK(m.at("input_components") == 1);
+  CHECK(m.at("input_euler") == 0);
+  CHECK(m.at("input_genus") == 1);
+  CHECK(m.at("input_b1") == 2);
+  CHECK(m.at("input_closed") == 1);
+  const Metrics without = run_stage(stage, evaluation::Topology::describe().params, shape, ring, {{"input", false}});
+  CHECK(without.count("input_genus") == 0);
+}
+
+TEST_CASE("the evaluation package loads and runs in a pipeline", "[pipeline]") {
+  Registry registry;
+  REQUIRE(registry.load_file(MEDAX_EVALUATION_PLUGIN));
+  for (const char* name : {"reconstruction", "counts", "topology"}) {
+    const RegisteredStage* stage = registry.find(name);
+    REQUIRE(stage);
+    CHECK(stage->info().role == Role::Evaluation);
+    CHECK(stage->info().doc == "docs/plugins/evaluation.md");
+  }
+  const auto dir = test::scratch_dir("evaluation_pipeline");
+  write_mesh(dir / "sphere.off", testing::make_sphere(2.0, 4));
+  MedialComplex mc = one_sphere(1.5);
+  write_medial(dir / "sphere.ma", mc);
+  std::ofstream(dir / "pipeline.yaml") << "name: evaluation\nseed: 0\ninput: sphere.off\nmedial_input: sphere.ma\n"
+                                          "stages:\n"
+                                          "  - plugin: reconstruction\n    params: {surface_samples: 1000}\n"
+                                          "  - plugin: counts\n"
+                                          "  - plugin: topology\n"
+                                          "outputs: {medial: [ma]}\n";
+  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
+  RunOptions options;
+  options.out_dir = dir / "run";
+  options.quiet = true;
+  const RunResult result = run_pipeline(config, options);
+  INFO(result.error);
+  REQUIRE(result.ok);
+  std::ifstream in(dir / "run" / "metrics.json");
+  const nlohmann::json metrics = nlohmann::json::parse(in);
+  CHECK(metrics["reconstruction"]["surface_to_envelope_max"].get<double>() == Approx(0.5).margin(1e-12));
+  CHECK(metrics["reconstruction"]["hausdorff"].get<double>() == Approx(0.5).margin(0.01));
+  CHECK(metrics["counts"]["N_c"].get<double>() == 4);
+  CHECK(metrics["topology"]["b0"].get<double>() == 1);
+  CHECK(metrics["topology"]["input_genus"].get<double>() == 0);
+}

@@ -36,7 +36,7 @@ StageInfo Reconstruction::describe() {
                .at_least(0),
            ParamSpec::boolean("export_envelope", false,
                               "Write the envelope boundary points (with normals, areas and distances to the "
-                              "surface) to <id>_envelope.ply in the run folder")}};
+                              "surface, in the input's frame) to <id>_envelope.ply in the run folder")}};
 }
 
 void Reconstruction::prepare(const Scene& scene) const {
@@ -69,17 +69,20 @@ Metrics Reconstruction::evaluate(const Shape& shape, const MedialComplex& medial
                        r.primitives, r.envelope.size(), r.step, r.surface_samples, 100.0 * r.hausdorff() / r.diagonal));
   if (params().boolean("export_envelope")) {
     const std::string name = (id().empty() ? std::string("reconstruction") : id()) + "_envelope.ply";
-    ctx.write_output(name, [&r](std::ostream& out) {
-      out << "ply\nformat ascii 1.0\ncomment medax reconstruction: points on the envelope boundary\n"
+    // In the input's frame, like the medial outputs, so that it overlays the input mesh.
+    const Similarity& frame = shape.to_input;
+    ctx.write_output(name, [&r, &frame](std::ostream& out) {
+      out << "ply\nformat ascii 1.0\ncomment medax reconstruction: points on the envelope boundary, input frame\n"
           << "element vertex " << r.envelope.size() << "\n"
           << "property double x\nproperty double y\nproperty double z\n"
           << "property double nx\nproperty double ny\nproperty double nz\n"
           << "property double area\nproperty double distance\nend_header\n";
       for (std::size_t i = 0; i < r.envelope.size(); ++i) {
-        const Vec3& p = r.envelope.points[i];
+        const Vec3 p = frame.apply(r.envelope.points[i]);
         const Vec3& n = r.envelope.normals[i];
         out << fmt::format("{:.17g} {:.17g} {:.17g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", p.x(), p.y(), p.z(), n.x(),
-                           n.y(), n.z(), r.envelope.areas[i], r.envelope_distances[i]);
+                           n.y(), n.z(), r.envelope.areas[i] * frame.scale * frame.scale,
+                           frame.apply_length(r.envelope_distances[i]));
       }
     });
   }

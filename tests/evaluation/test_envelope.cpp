@@ -73,7 +73,7 @@ MedialComplex random_complex(std::mt19937_64& rng, Index nv, int nf, int ne) {
 
 }  // namespace
 
-TEST_CASE("cone and slab closed forms agree with brute-force minimisation", "[envelope]") {
+TEST_CASE("envelope: cone and slab closed forms agree with brute-force minimisation", "[envelope]") {
   std::mt19937_64 rng(7);
   for (int trial = 0; trial < 200; ++trial) {
     const std::array<Vec3, 3> c{random_point(rng, -1, 1), random_point(rng, -1, 1), random_point(rng, -1, 1)};
@@ -99,7 +99,7 @@ TEST_CASE("cone and slab closed forms agree with brute-force minimisation", "[en
   }
 }
 
-TEST_CASE("closed forms on cases with a known answer", "[envelope]") {
+TEST_CASE("envelope: closed forms on cases with a known answer", "[envelope]") {
   // Cylinder part of a capsule: distance to the axis minus the radius.
   CHECK(services::cone_signed_distance({0.5, 0, 0.2}, {0, 0, -1}, 0.3, {0, 0, 1}, 0.3) == Approx(0.2).margin(1e-14));
   CHECK(services::cone_signed_distance({0, 0, 0.2}, {0, 0, -1}, 0.3, {0, 0, 1}, 0.3) == Approx(-0.3).margin(1e-14));
@@ -117,7 +117,7 @@ TEST_CASE("closed forms on cases with a known answer", "[envelope]") {
   CHECK(services::slab_signed_distance({0.5, 0.5, 1.0}, a, 0.1, b, 0.3, c, 0.1) == Approx(expected).margin(1e-14));
 }
 
-TEST_CASE("envelope distance equals brute force over every element of a random complex", "[envelope]") {
+TEST_CASE("envelope: distance equals brute force over every element of a random complex", "[envelope]") {
   std::mt19937_64 rng(11);
   for (int trial = 0; trial < 5; ++trial) {
     const MedialComplex mc = random_complex(rng, 40, 30, 25);
@@ -150,7 +150,7 @@ TEST_CASE("envelope distance equals brute force over every element of a random c
   }
 }
 
-TEST_CASE("only maximal elements become primitives", "[envelope]") {
+TEST_CASE("envelope: only maximal elements become primitives", "[envelope]") {
   MedialComplex mc;
   for (int v = 0; v < 6; ++v) mc.add_vertex(Vec3(v, 0, 0), 0.1);
   mc.add_face(0, 1, 2);
@@ -166,7 +166,7 @@ TEST_CASE("only maximal elements become primitives", "[envelope]") {
   CHECK(envelope.primitives()[2].count == 3);
 }
 
-TEST_CASE("boundary points of a sphere envelope lie on the sphere", "[envelope][sampling]") {
+TEST_CASE("envelope: boundary points of a sphere envelope lie on the sphere", "[envelope][sampling]") {
   MedialComplex mc;
   const double radius = 0.7;
   mc.add_vertex({0.1, -0.2, 0.3}, radius);
@@ -183,7 +183,7 @@ TEST_CASE("boundary points of a sphere envelope lie on the sphere", "[envelope][
   CHECK(s.total_area() == Approx(4 * kPi * radius * radius).epsilon(0.005));
 }
 
-TEST_CASE("boundary points of a capsule envelope: position, area and coverage", "[envelope][sampling]") {
+TEST_CASE("envelope: boundary points of a capsule envelope: position, area and coverage", "[envelope][sampling]") {
   const double radius = 0.3, half = 0.7;
   const Envelope envelope(capsule_complex(radius, half));
   const double step = 2 * radius / 150;
@@ -211,7 +211,7 @@ TEST_CASE("boundary points of a capsule envelope: position, area and coverage", 
   CHECK(worst < step);
 }
 
-TEST_CASE("distance to the boundary inside a union is deeper than inside any one primitive", "[envelope]") {
+TEST_CASE("envelope: distance to the boundary inside a union is deeper than inside any one primitive", "[envelope]") {
   // Two unit balls centred at (±0.5, 0, 0): from the origin the union's boundary is the
   // intersection circle, at √0.75, while each ball alone is only 0.5 deep there.
   MedialComplex mc;
@@ -229,14 +229,14 @@ TEST_CASE("distance to the boundary inside a union is deeper than inside any one
   CHECK(d[2] == Approx(std::sqrt(0.75) - 0.2).margin(step));
 }
 
-TEST_CASE("an empty complex has an empty envelope", "[envelope]") {
+TEST_CASE("envelope: an empty complex has an empty envelope", "[envelope]") {
   const Envelope envelope{MedialComplex{}};
   CHECK(envelope.empty());
   CHECK(envelope.sample_boundary(0.1).size() == 0);
   CHECK(std::isinf(envelope.signed_distance({0, 0, 0})));
 }
 
-TEST_CASE("invalid input is refused", "[envelope]") {
+TEST_CASE("envelope: invalid input is refused", "[envelope]") {
   MedialComplex mc;
   mc.add_vertex({0, 0, 0}, 1);
   mc.add_edge(0, 3);
@@ -272,7 +272,7 @@ double capsule_to_sphere_mean(double rho, double half, double big_r) {
 
 }  // namespace
 
-TEST_CASE("error of the envelope-to-surface measurement on a known answer", "[envelope][sampling]") {
+TEST_CASE("envelope: error of the envelope-to-surface measurement on a known answer", "[envelope][sampling]") {
   // Envelope: the capsule ρ = 0.3, L = 0.7 (two spheres and a cone). "Surface": the exact sphere
   // R = 1 about its centre, so that the distance from a boundary point q is |1 − |q|| with no
   // tessellation error. Exact values: max 0.7 (the cylinder's middle ring, |q| = ρ), mean from

@@ -18,6 +18,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <filesystem>
+#include <functional>
+#include <map>
 #include <sstream>
 
 using namespace medax;
@@ -59,7 +62,7 @@ Metrics reconstruction(const Shape& shape, const MedialComplex& mc, const std::m
 
 }  // namespace
 
-TEST_CASE("a sphere against the one-vertex complex of the same radius: only the tessellation error", "[reconstruction]") {
+TEST_CASE("reconstruction: a sphere against the one-vertex complex of the same radius: only the tessellation error", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 5);
   const double sag = icosphere_sag(shape.mesh, 1.0);
@@ -80,7 +83,7 @@ TEST_CASE("a sphere against the one-vertex complex of the same radius: only the 
   CHECK(m.at("surface_samples") == shape.mesh.vertices.size());
 }
 
-TEST_CASE("a sphere of radius R against the one-vertex complex of radius R' gives |R - R'| both ways", "[reconstruction]") {
+TEST_CASE("reconstruction: a sphere of radius R against the one-vertex complex of radius R' gives |R - R'| both ways", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 5);
   const double sag = icosphere_sag(shape.mesh, 1.0);
@@ -105,7 +108,7 @@ TEST_CASE("a sphere of radius R against the one-vertex complex of radius R' give
   }
 }
 
-TEST_CASE("a capsule against its two spheres and cone gives the tessellation error only", "[reconstruction]") {
+TEST_CASE("reconstruction: a capsule against its two spheres and cone gives the tessellation error only", "[reconstruction]") {
   const double radius = 0.3, half = 0.7;
   Shape shape;
   shape.mesh = testing::make_capsule(radius, half, 128);
@@ -137,7 +140,7 @@ TEST_CASE("a capsule against its two spheres and cone gives the tessellation err
   }
 }
 
-TEST_CASE("a complex that misses part of the shape: surface to envelope sees it", "[reconstruction]") {
+TEST_CASE("reconstruction: a complex that misses part of the shape: surface to envelope sees it", "[reconstruction]") {
   // Half a capsule's axis: the far hemisphere is uncovered by 2·half_length / 2.
   const double radius = 0.3, half = 0.7;
   Shape shape;
@@ -154,7 +157,7 @@ TEST_CASE("a complex that misses part of the shape: surface to envelope sees it"
   CHECK(m.at("hausdorff") == Approx(half).margin(1e-9));
 }
 
-TEST_CASE("reconstruction options: uniform surface samples, seeding, point clouds, steps", "[reconstruction]") {
+TEST_CASE("reconstruction: options: uniform surface samples, seeding, point clouds, steps", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 4);
   const MedialComplex mc = one_sphere(0.9);
@@ -186,7 +189,51 @@ TEST_CASE("reconstruction options: uniform surface samples, seeding, point cloud
   }
 }
 
-TEST_CASE("reconstruction refuses what it cannot measure", "[reconstruction]") {
+namespace {
+/// A context that keeps the extra outputs in memory.
+class CapturingContext : public BasicContext {
+ public:
+  std::map<std::string, std::string> files;
+  std::filesystem::path write_output(const std::string& name,
+                                     const std::function<void(std::ostream&)>& body) override {
+    std::ostringstream out;
+    body(out);
+    files[name] = out.str();
+    return name;
+  }
+};
+}  // namespace
+
+TEST_CASE("reconstruction: export_envelope writes the boundary points in the input's frame", "[reconstruction]") {
+  Shape shape;
+  shape.mesh = testing::make_sphere(1.0, 3);
+  shape.to_input = Similarity{2.0, Vec3(1, 0, 0)};  // the input was twice as big, shifted
+  evaluation::Reconstruction stage;
+  ParamSet params = default_params(evaluation::Reconstruction::describe().params);
+  params.set("export_envelope", true);
+  params.set("resolution", 30LL);
+  stage.configure(params);
+  stage.set_id("recon");
+  CapturingContext ctx;
+  const Metrics m = stage.evaluate(shape, one_sphere(0.5), ctx);
+  REQUIRE(ctx.files.count("recon_envelope.ply") == 1);
+  std::istringstream in(ctx.files["recon_envelope.ply"]);
+  std::string line;
+  std::size_t count = 0;
+  while (std::getline(in, line) && line != "end_header")
+    if (line.rfind("element vertex ", 0) == 0) count = std::stoul(line.substr(15));
+  CHECK(count == m.at("envelope_samples"));
+  std::size_t rows = 0;
+  double x, y, z, nx, ny, nz, area, distance;
+  while (in >> x >> y >> z >> nx >> ny >> nz >> area >> distance) {
+    ++rows;
+    CHECK((Vec3(x, y, z) - Vec3(1, 0, 0)).norm() == Approx(2 * 0.5).margin(1e-9));  // radius 0.5, scaled
+    CHECK(distance == Approx(2 * 0.5).margin(2 * icosphere_sag(shape.mesh, 1.0) + 1e-9));
+  }
+  CHECK(rows == count);
+}
+
+TEST_CASE("reconstruction: refuses what it cannot measure", "[reconstruction]") {
   evaluation::Reconstruction stage;
   ParamSet params = default_params(evaluation::Reconstruction::describe().params);
   params.set("vertices", false);
@@ -203,7 +250,7 @@ TEST_CASE("reconstruction refuses what it cannot measure", "[reconstruction]") {
   CHECK_NOTHROW(stage.prepare(scene));
 }
 
-TEST_CASE("counts on a small hand-built complex", "[counts]") {
+TEST_CASE("counts: a small hand-built complex", "[counts]") {
   MedialComplex mc;
   for (int v = 0; v < 8; ++v) mc.add_vertex(Vec3(v, v % 2, 0), 0.1);
   mc.add_face(0, 1, 2);
@@ -247,7 +294,7 @@ TEST_CASE("topology stage: a ring complex inside a torus", "[topology]") {
   CHECK(without.count("input_genus") == 0);
 }
 
-TEST_CASE("the evaluation package loads and runs in a pipeline", "[pipeline]") {
+TEST_CASE("evaluation: the evaluation package loads and runs in a pipeline", "[pipeline]") {
   Registry registry;
   REQUIRE(registry.load_file(MEDAX_EVALUATION_PLUGIN));
   for (const char* name : {"reconstruction", "counts", "topology"}) {

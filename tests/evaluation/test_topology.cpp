@@ -30,7 +30,7 @@ std::vector<Tri> annulus(Index n) {
 
 }  // namespace
 
-TEST_CASE("a triangle is a disk: chi = 1, b1 = 0", "[topology]") {
+TEST_CASE("topology: a triangle is a disk: chi = 1, b1 = 0", "[topology]") {
   const auto t = complex_topology(3, {}, {{0, 1, 2}});
   CHECK(t.vertices == 3);
   CHECK(t.edges == 3);
@@ -39,19 +39,19 @@ TEST_CASE("a triangle is a disk: chi = 1, b1 = 0", "[topology]") {
   check_betti(t, 1, 0, 0);
 }
 
-TEST_CASE("a cycle of three edges has b1 = 1", "[topology]") {
+TEST_CASE("topology: a cycle of three edges has b1 = 1", "[topology]") {
   const auto t = complex_topology(3, {{0, 1}, {1, 2}, {2, 0}}, {});
   CHECK(t.euler == 0);
   check_betti(t, 1, 1, 0);
 }
 
-TEST_CASE("a hollow tetrahedron has b2 = 1", "[topology]") {
+TEST_CASE("topology: a hollow tetrahedron has b2 = 1", "[topology]") {
   const auto t = complex_topology(4, {}, {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {0, 2, 3}});
   CHECK(t.euler == 2);
   check_betti(t, 1, 0, 1);
 }
 
-TEST_CASE("two hollow tetrahedra sharing a triangle have b2 = 2", "[topology]") {
+TEST_CASE("topology: two hollow tetrahedra sharing a triangle have b2 = 2", "[topology]") {
   // No free face anywhere: the column reduction does all the work.
   const auto t = complex_topology(5, {}, {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {0, 2, 3}, {0, 4, 1}, {1, 4, 2}, {0, 2, 4}});
   CHECK(t.faces == 7);
@@ -59,7 +59,7 @@ TEST_CASE("two hollow tetrahedra sharing a triangle have b2 = 2", "[topology]") 
   check_betti(t, 1, 0, 2);
 }
 
-TEST_CASE("ring complexes have b1 = 1", "[topology]") {
+TEST_CASE("topology: ring complexes have b1 = 1", "[topology]") {
   SECTION("a triangulated annulus") {
     const auto t = complex_topology(24, {}, annulus(12));
     CHECK(t.euler == 0);
@@ -77,7 +77,7 @@ TEST_CASE("ring complexes have b1 = 1", "[topology]") {
   }
 }
 
-TEST_CASE("components, isolated vertices, duplicates and degenerate elements", "[topology]") {
+TEST_CASE("topology: components, isolated vertices, duplicates and degenerate elements", "[topology]") {
   // Two disjoint triangles, one listed twice in another order, a degenerate triangle that is
   // really the edge 3-6, and an isolated vertex 7.
   const auto t = complex_topology(8, {{0, 1}, {1, 1}}, {{0, 1, 2}, {3, 4, 5}, {2, 1, 0}, {3, 3, 6}});
@@ -87,12 +87,12 @@ TEST_CASE("components, isolated vertices, duplicates and degenerate elements", "
   CHECK_THROWS_AS(complex_topology(2, {{0, 2}}, {}), std::invalid_argument);
 }
 
-TEST_CASE("a book of three pages is contractible", "[topology]") {
+TEST_CASE("topology: a book of three pages is contractible", "[topology]") {
   const auto t = complex_topology(5, {}, {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}});
   check_betti(t, 1, 0, 0);
 }
 
-TEST_CASE("surface topology of closed and open meshes", "[topology]") {
+TEST_CASE("topology: surface topology of closed and open meshes", "[topology]") {
   SECTION("sphere") {
     const auto s = services::surface_topology(testing::make_sphere(1.0, 4));
     CHECK(s.closed());

@@ -113,7 +113,18 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
   report(0.0, "envelope");
   const services::Envelope envelope(medial);
   result.primitives = envelope.primitives().size();
-  result.step = envelope_step(shape, envelope, options);
+  result.requested_step = result.step = envelope_step(shape, envelope, options);
+  if (options.max_envelope_samples > 0 && !(options.step > 0)) {
+    // About 1.5 points per step² of boundary (‖n‖₁ averages 1.5), and ∂E ≈ the surface.
+    double area = 0;
+    if (has_mesh) {
+      area = services::surface_area(shape.mesh);
+    } else {
+      for (double a : shape.samples.areas) area += a;
+    }
+    const double budget = static_cast<double>(options.max_envelope_samples);
+    if (1.5 * area / (result.step * result.step) > budget) result.step = std::sqrt(1.5 * area / budget);
+  }
   result.envelope = envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); });
   result.envelope_area = result.envelope.total_area();
 

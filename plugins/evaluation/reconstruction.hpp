@@ -16,11 +16,16 @@ struct ReconstructionOptions {
   double step = 0;                  ///< absolute grid step; 0 = from `resolution`
   bool use_vertices = true;         ///< surface samples include the mesh vertices
   std::size_t uniform_samples = 0;  ///< plus this many area-uniform surface samples
+  /// Guard for very thin shapes (where the smallest side is tiny): when the surface's area
+  /// would give more envelope points than this, the step from `resolution` is enlarged to fit
+  /// (0: no guard; an explicit `step` is always used as given).
+  std::size_t max_envelope_samples = 5'000'000;
 };
 
 struct ReconstructionResult {
   double diagonal = 0;  ///< bbox diagonal of the input surface (the % normaliser)
   double step = 0;      ///< envelope grid step used
+  double requested_step = 0;  ///< the step the options asked for (larger `step` = capped)
   std::size_t primitives = 0, surface_samples = 0;
   double surface_inside_fraction = 0;  ///< fraction of surface samples strictly inside E
   double surface_to_envelope_max = 0, surface_to_envelope_mean = 0;  ///< over surface samples

@@ -30,6 +30,10 @@ StageInfo Reconstruction::describe() {
            ParamSpec::real("step", 0.0, "Absolute grid step in the shape's current frame; 0 uses `resolution`")
                .at_least(0)
                .in_unit("length"),
+           ParamSpec::integer("max_envelope_samples", 5000000,
+                              "Guard for thin shapes: if the surface's area would give more envelope points "
+                              "than this, the step is enlarged to fit, with a warning (0: no guard)")
+               .at_least(0),
            ParamSpec::boolean("vertices", true, "Measure surface→envelope from the mesh vertices (as the VMAS code)"),
            ParamSpec::integer("surface_samples", 0,
                               "Area-uniform surface samples added to the vertices (seeded per stage)")
@@ -55,11 +59,16 @@ Metrics Reconstruction::evaluate(const Shape& shape, const MedialComplex& medial
   options.step = params().real("step");
   options.use_vertices = params().boolean("vertices");
   options.uniform_samples = static_cast<std::size_t>(params().integer("surface_samples"));
+  options.max_envelope_samples = static_cast<std::size_t>(params().integer("max_envelope_samples"));
   const ReconstructionResult r = measure_reconstruction(
       shape, medial, options, ctx.rng(), [&ctx](double f, std::string_view what) {
         ctx.check_cancelled();
         ctx.progress(f, what);
       });
+  if (r.step > r.requested_step)
+    ctx.warn(fmt::format("reconstruction: the step {:g} would give more than {} envelope points on this surface; "
+                         "using step {:g} instead (raise `max_envelope_samples` or set `step` to insist)",
+                         r.requested_step, options.max_envelope_samples, r.step));
   if (r.envelope.size() == 0)
     ctx.warn("reconstruction: no envelope boundary point was found at step " + fmt::format("{:g}", r.step) +
              " (the envelope is thinner than the grid); envelope→surface distances are 0. Lower `step` or raise "

@@ -181,6 +181,16 @@ TEST_CASE("reconstruction: options: uniform surface samples, seeding, point clou
     CHECK(a.at("surface_to_envelope_max") == Approx(0.1).margin(1e-12));
     CHECK(a.at("envelope_to_surface_max") >= 0.1 - 1e-9);
   }
+  SECTION("a thin plate: the point budget enlarges the step, an explicit step is kept") {
+    Shape plate;
+    plate.mesh = testing::make_box(1.0, 1.0, 0.001, 4);  // smallest side 0.002: step 1.3e-5
+    MedialComplex mid;
+    mid.add_vertex(Vec3::Zero(), 0.001);
+    const Metrics a = reconstruction(plate, mid, {{"max_envelope_samples", 20000LL}});
+    CHECK(a.at("envelope_step") == Approx(std::sqrt(1.5 * 8.016 / 20000)).epsilon(1e-6));
+    const Metrics b = reconstruction(plate, mid, {{"max_envelope_samples", 20000LL}, {"step", 0.0002}});
+    CHECK(b.at("envelope_step") == 0.0002);
+  }
   SECTION("an absolute step overrides the resolution") {
     const Metrics a = reconstruction(shape, mc, {{"step", 0.05}});
     CHECK(a.at("envelope_step") == 0.05);

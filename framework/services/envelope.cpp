@@ -203,10 +203,10 @@ struct Box {
 /// where ℓ(c) = g·c − gamma.
 /// The affine bound is what makes long primitives whose radius grows along them (Voronoi faces
 /// running from the surface to the medial axis) cheap to prune: r_max alone is the radius at
-/// their far end. Children are stored side by side.
+/// their far end. A node's left child follows it; its right child follows the left subtree.
 struct Node {
-  // Single precision, rounded outwards so that the bounds stay valid: half the memory traffic
-  // of a query, which is what the search is bound by on large complexes.
+  // Single precision, rounded outwards so that the bounds stay valid: half the memory a query
+  // reads.
   std::array<float, 3> lo, hi;  // centre box
   std::array<float, 3> g;
   float rmax = 0, slope = 0, gamma = 0;  // every ball below: r ≤ g·c − gamma; slope ≥ |g|
@@ -257,8 +257,8 @@ struct Moments {
   }
 };
 
-constexpr std::uint32_t kLeafSize = 2;
-constexpr int kLastLevel = 2;
+constexpr std::uint32_t kLeafSize = 2;  // primitives per leaf (2 measured best, 1 as good, 4 and 8 worse)
+constexpr int kLastLevel = 2;           // octree cells of 4×4×4 steps, then grid points (2 measured best)
 
 
 }  // namespace

@@ -20,12 +20,8 @@ int run_sweep(const RunArgs& args) {
     if (args.timeout >= 0) config.limits.timeout_seconds = args.timeout;
     if (args.memory_mib >= 0) config.limits.memory_mib = args.memory_mib;
     jobs = expand_sweep(config);
-    if (!args.settings.empty())  // --set applies to every job, before the swept values
-      for (SweepJob& job : jobs) {
-        std::vector<std::pair<std::string, std::string>> fixed;
-        for (const std::string& s : args.settings) fixed.emplace_back(s.substr(0, s.find('=')), s.substr(s.find('=') + 1));
-        job.assignment.insert(job.assignment.begin(), fixed.begin(), fixed.end());
-      }
+    for (SweepJob& job : jobs)  // --set applies to every job, before the swept values
+      job.settings.insert(job.settings.begin(), args.settings.begin(), args.settings.end());
     validate_sweep(config, jobs, registry);
   } catch (const PipelineError& e) {
     for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
+#include <optional>
 #include <set>
 
 namespace medax {
@@ -88,6 +89,51 @@ void add_inputs(const YAML::Node& node, const fs::path& base, std::vector<fs::pa
   }
 }
 
+/// `STAGE.PARAM: [v1, v2]` (or a single value).
+SweepAxis plain_axis(const std::string& key, const YAML::Node& values) {
+  SweepAxis axis{key, {}, {}};
+  const auto add = [&](const YAML::Node& v) {
+    axis.values.push_back(yaml_text(v));
+    axis.settings.push_back({key + "=" + axis.values.back()});
+  };
+  if (values.IsSequence()) for (const YAML::Node& v : values) add(v);
+  else add(values);
+  return axis;
+}
+
+/// `NAME: [{name: a, STAGE.X: v, ...}, ...]`: bundles of settings applied together.
+std::optional<SweepAxis> named_axis(const YAML::Node& key, const YAML::Node& values, Diagnostics& diag) {
+  SweepAxis axis{key.Scalar(), {}, {}};
+  if (!values.IsSequence()) {
+    diag.error(values, fmt::format("sweep key '{}' has no dot, so it names a list of bundles like "
+                                   "[{{name: a, STAGE.PARAM: v}}]; or write STAGE.PARAM", axis.key));
+    return std::nullopt;
+  }
+  bool ok = true;
+  for (const YAML::Node& bundle : values) {
+    if (!bundle.IsMap()) {
+      diag.error(bundle, "a bundle is a map {name: LABEL, STAGE.PARAM: VALUE, ...}");
+      ok = false;
+      continue;
+    }
+    std::string name = bundle["name"] ? bundle["name"].Scalar() : std::to_string(axis.values.size() + 1);
+    std::vector<std::string> settings;
+    for (const auto& kv : bundle) {
+      const std::string k = kv.first.Scalar();
+      if (k == "name") continue;
+      if (k.find('.') == std::string::npos) diag.error(kv.first, fmt::format("'{}' must be STAGE.PARAM or STAGE.plugin", k));
+      settings.push_back(k + "=" + yaml_text(kv.second));
+    }
+    // A plugin swap resets that stage's parameters, so it must come first.
+    std::stable_partition(settings.begin(), settings.end(),
+                          [](const std::string& s) { return s.find(".plugin=") != std::string::npos; });
+    axis.values.push_back(name);
+    axis.settings.push_back(std::move(settings));
+  }
+  if (!ok) return std::nullopt;
+  return axis;
+}
+
 std::string folder_safe(const std::string& text) {
   std::string out;
   for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '=' || c == '-') ? c : '_';
@@ -95,12 +141,6 @@ std::string folder_safe(const std::string& text) {
 }
 
 }  // namespace
-
-std::vector<std::string> SweepJob::settings() const {
-  std::vector<std::string> out;
-  for (const auto& [key, value] : assignment) out.push_back(key + "=" + value);
-  return out;
-}
 
 bool is_sweep(const fs::path& pipeline) {
   try {
@@ -135,25 +175,16 @@ SweepConfig load_sweep(const fs::path& pipeline) {
   }
 
   if (const YAML::Node sweep = root["sweep"]) {
-    if (!sweep.IsMap()) diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin) to a list of values");
+    if (!sweep.IsMap()) diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin, or a name) to a list of values");
     else
       for (const auto& kv : sweep) {
-        const std::string key = kv.first.Scalar();
-        if (key.find('.') == std::string::npos) {
-          diag.error(kv.first, fmt::format("sweep key '{}' must be STAGE.PARAM or STAGE.plugin", key));
-          continue;
-        }
-        SweepAxis axis{key, {}};
-        if (kv.second.IsSequence()) for (const YAML::Node& v : kv.second) axis.values.push_back(yaml_text(v));
-        else axis.values.push_back(yaml_text(kv.second));
-        if (axis.values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", key));
-        config.axes.push_back(std::move(axis));
+        std::optional<SweepAxis> axis = kv.first.Scalar().find('.') == std::string::npos
+                                            ? named_axis(kv.first, kv.second, diag)
+                                            : plain_axis(kv.first.Scalar(), kv.second);
+        if (!axis) continue;
+        if (axis->values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", axis->key));
+        config.axes.push_back(std::move(*axis));
       }
-    // A plugin choice must apply before that stage's parameters (it resets them).
-    std::stable_sort(config.axes.begin(), config.axes.end(), [](const SweepAxis& a, const SweepAxis& b) {
-      const auto is_plugin = [](const SweepAxis& x) { return x.key.size() > 7 && x.key.rfind(".plugin") == x.key.size() - 7; };
-      return is_plugin(a) && !is_plugin(b);
-    });
   }
 
   if (const YAML::Node plots = root["plots"]) {
@@ -203,8 +234,12 @@ std::vector<SweepJob> expand_sweep(const SweepConfig& config) {
       for (std::size_t a = 0; a < config.axes.size(); ++a) {
         const SweepAxis& axis = config.axes[a];
         job.assignment.emplace_back(axis.key, axis.values[choice[a]]);
+        job.settings.insert(job.settings.end(), axis.settings[choice[a]].begin(), axis.settings[choice[a]].end());
         name += "-" + axis.key.substr(axis.key.find('.') + 1) + "=" + axis.values[choice[a]];
       }
+      // A plugin swap resets that stage's parameters, so swaps go first.
+      std::stable_partition(job.settings.begin(), job.settings.end(),
+                            [](const std::string& s) { return s.find(".plugin=") != std::string::npos; });
       job.name = folder_safe(name).substr(0, 120);
       jobs.push_back(std::move(job));
       // Odometer over the axes, last axis fastest.
@@ -221,7 +256,7 @@ void validate_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs
   std::set<std::string> seen;
   for (const SweepJob& job : jobs) {
     try {
-      load_pipeline(config.file, registry, Overrides{job.input, job.settings(), "sweep"});
+      load_pipeline(config.file, registry, Overrides{job.input, job.settings, "sweep"});
     } catch (const PipelineError& e) {
       for (const Diagnostic& d : e.diagnostics())
         if (seen.insert(d.format()).second) all.push_back(d);

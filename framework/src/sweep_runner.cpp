@@ -34,7 +34,7 @@ struct Running {
 bool already_done(const SweepJob& job, const fs::path& dir) {
   const nlohmann::json status = detail::read_json_file(dir / "status.json");
   return status.is_object() && status.value("status", "") == "ok" &&
-         status.value("settings", std::vector<std::string>{}) == job.settings() &&
+         status.value("settings", std::vector<std::string>{}) == job.settings &&
          status.value("input", "") == job.input.string();
 }
 
@@ -43,7 +43,7 @@ bool already_done(const SweepJob& job, const fs::path& dir) {
 pid_t start_job(const SweepConfig& config, const SweepJob& job, const fs::path& dir, const SweepOptions& options) {
   std::vector<std::string> args{options.medax_executable.string(), "run", config.file.string(), "--job", "--quiet",
                                 "--input", job.input.string(), "--out", dir.string()};
-  for (const std::string& s : job.settings()) {
+  for (const std::string& s : job.settings) {
     args.push_back("--set");
     args.push_back(s);
   }
@@ -87,7 +87,7 @@ void record_status(const SweepJob& job, const fs::path& dir, int wait_status, bo
                    const SweepConfig& config) {
   nlohmann::json status;
   status["input"] = job.input.string();
-  status["settings"] = job.settings();
+  status["settings"] = job.settings;
   status["seconds"] = seconds;
   std::string state;
   if (timed_out) {

@@ -57,9 +57,9 @@ TEST_CASE("a sweep expands to the cartesian product with inputs outermost", "[sw
   const auto jobs = medax::expand_sweep(config);
   REQUIRE(jobs.size() == 2 * 3 * 2);
   CHECK(jobs[0].input.filename() == "cube.off");
-  CHECK(jobs[0].settings() == std::vector<std::string>{"scale.factor=1", "count.element=all"});
-  CHECK(jobs[1].settings() == std::vector<std::string>{"scale.factor=1", "count.element=vertices"});
-  CHECK(jobs[2].settings() == std::vector<std::string>{"scale.factor=2", "count.element=all"});
+  CHECK(jobs[0].settings == std::vector<std::string>{"scale.factor=1", "count.element=all"});
+  CHECK(jobs[1].settings == std::vector<std::string>{"scale.factor=1", "count.element=vertices"});
+  CHECK(jobs[2].settings == std::vector<std::string>{"scale.factor=2", "count.element=all"});
   CHECK(jobs[6].input.filename() == "ellipsoid.off");
   std::set<std::string> names;
   for (const auto& job : jobs) names.insert(job.name);
@@ -87,7 +87,8 @@ TEST_CASE("sweep errors are found before any job runs", "[sweep]") {
   CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:1:10") && Catch::Contains("not found"));
   write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, -5]\n  nodot: [1]\n"
                    "stages:\n  - {plugin: test_scale, id: scale}\n");
-  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:4:3") && Catch::Contains("STAGE.PARAM"));
+  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:4:11") && Catch::Contains("a bundle is a map") &&
+                                                 !Catch::Contains("no values"));
   write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, -5]\n"
                    "stages:\n  - {plugin: test_scale, id: scale}\n");
   const auto config = medax::load_sweep(file);
@@ -172,4 +173,22 @@ TEST_CASE("results.csv has one row per job with parameters metrics times and sta
     const std::string bytes = read_text(plot);
     CHECK(bytes.find(ext == std::string("png") ? "PNG" : "<svg") != std::string::npos);
   }
+}
+
+TEST_CASE("a named sweep axis applies bundles of settings with plugin swaps first", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_bundles");
+  const fs::path file = write_text(
+      dir / "sweep.yaml", "input: " + data_file("cube.off") +
+                              "\nsweep:\n  method:\n    - {name: small, scale.factor: 0.5}\n"
+                              "    - {name: oracle, extract.oracle: test_radius_field, extract.plugin: test_oracle_centroid}\n"
+                              "stages:\n  - {plugin: test_scale, id: scale}\n  - {plugin: test_centroid, id: extract}\n");
+  const auto config = medax::load_sweep(file);
+  const auto jobs = medax::expand_sweep(config);
+  REQUIRE(jobs.size() == 2);
+  CHECK(jobs[0].assignment == std::vector<std::pair<std::string, std::string>>{{"method", "small"}});
+  CHECK(jobs[0].settings == std::vector<std::string>{"scale.factor=0.5"});
+  CHECK(jobs[1].name == "0002-cube-method=oracle");
+  CHECK(jobs[1].settings ==
+        std::vector<std::string>{"extract.plugin=test_oracle_centroid", "extract.oracle=test_radius_field"});
+  medax::validate_sweep(config, jobs, medax::test::good_registry());
 }

@@ -11,9 +11,13 @@
 
 namespace medax {
 
+/// One swept dimension. A plain axis sets one key (`STAGE.PARAM` or `STAGE.plugin`) to each
+/// value; a named axis (a key without a dot) takes bundles of settings applied together, e.g.
+/// `method: [{name: durix, prep.plugin: delaunay_surface, extract.plugin: durix}, ...]`.
 struct SweepAxis {
-  std::string key;                  ///< "STAGE.PARAM" or "STAGE.plugin"
-  std::vector<std::string> values;  ///< YAML text of each value
+  std::string key;                                ///< results column
+  std::vector<std::string> values;                ///< what the column shows for each choice
+  std::vector<std::vector<std::string>> settings; ///< "KEY=VALUE" settings of each choice
 };
 
 struct PlotSpec {
@@ -39,8 +43,8 @@ struct SweepConfig {
 struct SweepJob {
   std::string name;  ///< folder name under jobs/, unique and readable
   std::filesystem::path input;
-  std::vector<std::pair<std::string, std::string>> assignment;  ///< axis key -> value
-  std::vector<std::string> settings() const;                    ///< "KEY=VALUE" for --set
+  std::vector<std::pair<std::string, std::string>> assignment;  ///< axis key -> shown value
+  std::vector<std::string> settings;                            ///< "KEY=VALUE" for --set
 };
 
 /// True when the file has `sweep:` or `inputs:` (so `medax run` runs it as an experiment).

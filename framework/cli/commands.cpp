@@ -98,6 +98,7 @@ int describe(const std::string& name) {
 }
 
 int validate(const RunArgs& args) {
+  if (is_sweep(args.pipeline)) return validate_sweep(args);
   Registry& registry = Registry::global();
   auto config = load(args, registry);
   if (!config) return 2;

@@ -31,8 +31,9 @@ int list_plugins();
 int describe(const std::string& name);
 int validate(const RunArgs& args);
 int run(const RunArgs& args);
-/// `run` on a pipeline with `sweep:` or `inputs:`.
+/// `run` and `validate` on a pipeline with `sweep:` or `inputs:` (an experiment).
 int run_sweep(const RunArgs& args);
+int validate_sweep(const RunArgs& args);
 int bench(const BenchArgs& args);
 
 }  // namespace medax::cli

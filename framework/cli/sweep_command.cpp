@@ -8,10 +8,19 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <fmt/format.h>
 
+#include <optional>
+
 namespace medax::cli {
 
-int run_sweep(const RunArgs& args) {
-  Registry& registry = Registry::global();
+namespace {
+
+struct Experiment {
+  SweepConfig config;
+  std::vector<SweepJob> jobs;
+};
+
+/// Reads, expands and validates every job; prints the diagnostics and returns nullopt on error.
+std::optional<Experiment> load_experiment(const RunArgs& args, const Registry& registry) {
   SweepConfig config;
   std::vector<SweepJob> jobs;
   try {
@@ -25,8 +34,27 @@ int run_sweep(const RunArgs& args) {
     validate_sweep(config, jobs, registry);
   } catch (const PipelineError& e) {
     for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());
-    return 2;
+    return std::nullopt;
   }
+  return Experiment{std::move(config), std::move(jobs)};
+}
+
+}  // namespace
+
+int validate_sweep(const RunArgs& args) {
+  const auto experiment = load_experiment(args, Registry::global());
+  if (!experiment) return 2;
+  fmt::print("{}: valid experiment ({} jobs: {} inputs x {} combinations)\n", args.pipeline.string(),
+             experiment->jobs.size(), experiment->config.inputs.size(),
+             experiment->jobs.size() / std::max<std::size_t>(1, experiment->config.inputs.size()));
+  return 0;
+}
+
+int run_sweep(const RunArgs& args) {
+  auto experiment = load_experiment(args, Registry::global());
+  if (!experiment) return 2;
+  const SweepConfig& config = experiment->config;
+  const std::vector<SweepJob>& jobs = experiment->jobs;
   SweepOptions options;
   options.out_dir = args.out.empty() ? std::filesystem::path("medax-runs") / config.name : args.out;
   options.medax_executable = boost::dll::program_location().string();

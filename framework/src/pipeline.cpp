@@ -20,7 +20,7 @@ namespace {
 // ignores them.
 const std::vector<std::string> kTopKeys{"medax", "name",  "seed",  "input",  "medial_input", "stages",
                                         "outputs", "inputs", "sweep", "plots", "limits"};
-const std::vector<std::string> kStageKeys{"plugin", "id", "params"};
+const std::vector<std::string> kStageKeys{"plugin", "id", "params", "enabled"};
 const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
 const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};
 const std::vector<std::string> kSurfaceFormats{"off", "obj", "ply", "stl"};
@@ -302,6 +302,12 @@ void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& chec
         ids.push_back(id);
         if (id != stage_id) continue;
         found = true;
+        if (param == "enabled") {
+          YAML::Node flag = YAML::Node(value);
+          stage["enabled"] = flag;
+          check.mark_overridden(flag, where);
+          continue;
+        }
         if (param == "plugin") {  // swap the plugin; the old plugin's params do not apply
           YAML::Node plugin = YAML::Node(value);
           stage["plugin"] = plugin;
@@ -408,6 +414,11 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
     std::set<std::string> ids;
     bool has_medial = !config.medial_input.empty();
     for (const YAML::Node& node : stages) {
+      if (node.IsMap() && node["enabled"]) {  // `enabled: false` (or --set STAGE.enabled=false) skips it
+        const auto enabled = parse_bool(node["enabled"].Scalar());
+        if (!enabled) check.error(node["enabled"], "`enabled` is true or false");
+        if (!enabled.value_or(true)) continue;
+      }
       auto stage = validator.stage(node, std::nullopt);
       if (!stage) {
         // An invalid extraction stage still provides the complex for the role check of later

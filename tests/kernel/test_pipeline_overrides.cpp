@@ -100,3 +100,18 @@ TEST_CASE("override --input replaces the input and a missing one names the optio
   CHECK(diagnostics[0].file == "--input");
   CHECK_THAT(diagnostics[0].message, Catch::Contains("missing.off not found"));
 }
+
+TEST_CASE("a stage can be switched off in the file or with --set STAGE.enabled=false", "[pipeline]") {
+  const auto dir = scratch_dir("overrides_enabled");
+  const auto file = medax::test::write_text(
+      dir / "pipeline.yaml", "input: " + data_file("cube.off") +
+                                 "\nstages:\n  - {plugin: test_scale, id: scale, enabled: false}\n"
+                                 "  - plugin: test_centroid\n  - {plugin: test_count, id: count}\n");
+  const auto config = load_pipeline(file, medax::test::good_registry());
+  REQUIRE(config.stages.size() == 2);
+  CHECK(config.stages[0].plugin == "test_centroid");
+  const auto fewer = load_pipeline(file, medax::test::good_registry(), Overrides{{}, {"count.enabled=false"}});
+  CHECK(fewer.stages.size() == 1);
+  const auto again = load_pipeline(file, medax::test::good_registry(), Overrides{{}, {"scale.enabled=true"}});
+  CHECK(again.stages.size() == 3);
+}

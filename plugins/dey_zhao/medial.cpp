@@ -99,6 +99,47 @@ inline void atomic_max(std::atomic<std::uint64_t>& slot, double value) {
   }
 }
 
+/// The points' indices along a Morton (Z-order) curve of their bounding box, ties by index.
+/// Computing in that order keeps the per-point arrays and the cells (sorted by corners) local in
+/// memory; samples often come in random order. The codes depend on coordinates only through
+/// comparisons and the ratios (x − lo) / (hi − lo), so scaling by a power of two keeps them.
+std::vector<Index> spatial_order(const std::vector<Vec3>& P, bool parallel) {
+  const std::size_t n = P.size();
+  std::vector<Index> order(n);
+  if (n == 0) return order;
+  Vec3 lo = P[0], hi = P[0];
+  for (const Vec3& p : P) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const auto spread = [](std::uint64_t v) {  // 21 bits to every third bit
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::vector<std::pair<std::uint64_t, Index>> keys(n);
+  const auto key = [&](std::size_t i) {
+    std::uint64_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double extent = hi[a] - lo[a];
+      const double f = extent > 0 ? (P[i][a] - lo[a]) / extent : 0.0;
+      const auto q = static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, std::floor(f * 2097152.0))));
+      code |= spread(q) << a;
+    }
+    keys[i] = {code, static_cast<Index>(i)};
+  };
+  if (parallel) {
+    tbb::parallel_for(std::size_t{0}, n, key);
+    tbb::parallel_sort(keys.begin(), keys.end());
+  } else {
+    for (std::size_t i = 0; i < n; ++i) key(i);
+    std::sort(keys.begin(), keys.end());
+  }
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].second;
+  return order;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -260,6 +301,28 @@ struct SelectionBlock {
   std::size_t angle = 0, ratio = 0, unbounded = 0, dropped = 0;
 };
 
+/// Whether the edge (p, q) passes a condition at one end: the same tests as
+/// condition_bits(score_edge(...)), stopping at the first that decides (most edges fail early).
+bool passes_any(const std::vector<Vec3>& P, const Umbrellas& u, Index p, Index q, const MedialOptions& o,
+                double sin_theta) {
+  const Vec3 d = P[q] - P[p];
+  const double length = d.norm();
+  const Vec3 t = d / length;
+  const Index ends[2] = {p, q};
+  if (o.ratio_condition)
+    for (Index x : ends)
+      if (u.offsets[x] != u.offsets[x + 1] && length / u.max_radius[x] > o.rho) return true;
+  if (o.angle_condition)
+    for (Index x : ends) {
+      const std::size_t begin = u.offsets[x], end = u.offsets[x + 1];
+      if (begin == end) continue;
+      std::size_t i = begin;
+      while (i < end && std::abs(u.normals[i].dot(t)) > sin_theta) ++i;
+      if (i == end) return true;
+    }
+  return false;
+}
+
 /// Walks around the edge (u, w) from cell c, first across the facet opposite `cross`, appending
 /// the cells after c to `out`. Returns 1 when back at c (a closed ring), 0 at the hull (`ray` =
 /// the hull facet reached), −1 at a cell lower than c (c does not own the edge).
@@ -287,8 +350,10 @@ int walk(const DelaunayTetrahedralization& dt, Index c, Index u, Index w, Index 
   }
 }
 
-void select_block(const std::vector<Vec3>& P, const DelaunayTetrahedralization& dt, const Umbrellas& u,
-                  const MedialOptions& options, std::size_t begin, std::size_t end, SelectionBlock& out) {
+/// `original[i]`: the caller's index of point i; p and q of an edge are ordered by it.
+void select_block(const std::vector<Vec3>& P, const std::vector<Index>& original, const DelaunayTetrahedralization& dt,
+                  const Umbrellas& u, const MedialOptions& options, std::size_t begin, std::size_t end,
+                  SelectionBlock& out) {
   std::vector<Index> forward, backward;
   const double sin_theta = std::sin(options.theta);
   for (std::size_t ci = begin; ci < end; ++ci) {
@@ -302,10 +367,9 @@ void select_block(const std::vector<Vec3>& P, const DelaunayTetrahedralization& 
       if ((left != kInf && left < static_cast<std::int64_t>(c)) || (right != kInf && right < static_cast<std::int64_t>(c)))
         continue;
       const Index uu = corner[e[0]], ww = corner[e[1]];
-      const Index p = std::min(uu, ww), q = std::max(uu, ww);
-      const EdgeScores scores = score_edge(P, u, p, q);
-      const int bits = condition_bits(scores, options, sin_theta);
-      if (!bits) continue;
+      const bool forward_edge = original[uu] < original[ww];
+      const Index p = forward_edge ? uu : ww, q = forward_edge ? ww : uu;
+      if (!passes_any(P, u, p, q, options, sin_theta)) continue;
       // Orientation: for a positively oriented cell, orient(u, w, a, b) has the sign of the
       // permutation e; when positive, a → b turns counter-clockwise about u → w, and crossing
       // the facet opposite a walks on counter-clockwise.
@@ -318,7 +382,10 @@ void select_block(const std::vector<Vec3>& P, const DelaunayTetrahedralization& 
       if (closed < 0) continue;
       backward.clear();
       if (closed == 0 && walk(dt, c, uu, ww, keep, cross, backward, first_ray) < 0) continue;
-      // c owns the edge: it is selected.
+      // c owns the edge: it is selected. Its scores (fields) and condition bits (label).
+      const EdgeScores scores = score_edge(P, u, p, q);
+      const int bits = condition_bits(scores, options, sin_theta);
+      if (!bits) continue;  // never: passes_any() makes the same tests
       if (bits & (kAngleP | kAngleQ)) ++out.angle;
       if (bits & (kRatioP | kRatioQ)) ++out.ratio;
       const bool open = closed == 0;
@@ -367,14 +434,23 @@ struct UnionFind {
 
 MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options, MedialReport* report) {
   if (!input.points) throw std::invalid_argument("dey_zhao: no points");
-  const std::vector<Vec3>& P = *input.points;
   MedialReport info;
   auto t0 = Clock::now();
+  // Everything below runs on the points renumbered along a space-filling curve (locality);
+  // `original` maps back to the caller's indices for the output.
+  const std::vector<Index> original = spatial_order(*input.points, options.parallel);
+  std::vector<Vec3> P(original.size());
+  for (std::size_t i = 0; i < P.size(); ++i) P[i] = (*input.points)[original[i]];
 
   // Which inner selection can run, and its setup (overlapping the Delaunay tetrahedralization).
   InnerSelection inner = options.inner;
   const bool has_mesh = input.mesh && !input.mesh->faces.empty();
   const bool has_normals = input.normals && input.normals->size() == P.size();
+  std::vector<Vec3> normals;
+  if (has_normals) {
+    normals.resize(P.size());
+    for (std::size_t i = 0; i < P.size(); ++i) normals[i] = (*input.normals)[original[i]];
+  }
   if (inner == InnerSelection::DelaunaySurface && !(has_mesh && input.points_are_mesh_vertices))
     throw std::invalid_argument("inner selection `delaunay_surface` needs the mesh, with the points being its "
                                 "vertices (`points: vertices`)");
@@ -437,7 +513,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
   t0 = Clock::now();
   std::vector<SelectionBlock> blocks((n + kBlock - 1) / kBlock);
   for_blocks(n, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
-    select_block(P, dt, u, options, begin, end, blocks[b]);
+    select_block(P, original, dt, u, options, begin, end, blocks[b]);
   });
   std::vector<Selected> selected;
   std::vector<Index> rings;
@@ -471,7 +547,14 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
     std::size_t missing = 0;
     bool labelled = false;
     try {
-      labelled = label_cells_by_surface(dt, *input.mesh, cell_inside, missing);
+      SurfaceMesh renumbered;  // the mesh triangles in the renumbered point indices
+      std::vector<Index> position(P.size());
+      for (std::size_t i = 0; i < P.size(); ++i) position[original[i]] = static_cast<Index>(i);
+      renumbered.faces.reserve(input.mesh->faces.size());
+      for (const Tri& f : input.mesh->faces)
+        renumbered.faces.push_back({f[0] < P.size() ? position[f[0]] : f[0], f[1] < P.size() ? position[f[1]] : f[1],
+                                    f[2] < P.size() ? position[f[2]] : f[2]});
+      labelled = label_cells_by_surface(dt, renumbered, cell_inside, missing);
     } catch (const std::invalid_argument&) {
       if (inner == InnerSelection::DelaunaySurface) throw;
       info.inner_note = "the mesh triangles are Delaunay facets but their inside parity is inconsistent; ";
@@ -523,7 +606,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
       break;
     }
     case InnerSelection::Normals: {
-      const auto& N = *input.normals;
+      const auto& N = normals;
       for (std::size_t i = 0; i < selected.size(); ++i) {
         const Selected& s = selected[i];
         const Vec3 d = P[s.q] - P[s.p];
@@ -595,7 +678,8 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
     cell_vertex[c] = static_cast<Index>(medial.centres.size());
     medial.centres.push_back(cc[c]);
     medial.radii.push_back(dt.circumradii[c]);
-    std::array<Index, 4> g = dt.cells[c];
+    std::array<Index, 4> g;
+    for (int k = 0; k < 4; ++k) g[k] = original[dt.cells[c][k]];
     std::sort(g.begin(), g.end());
     medial.generators.emplace_back(g.begin(), g.end());
   }
@@ -608,7 +692,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
     const Vec3 end = cc[c] + ray_length * unit(outward_normal(P, dt.cells[c], k));
     medial.centres.push_back(end);
     medial.radii.push_back((end - P[f[0]]).norm());
-    std::array<Index, 3> g = f;
+    std::array<Index, 3> g{original[f[0]], original[f[1]], original[f[2]]};
     std::sort(g.begin(), g.end());
     medial.generators.emplace_back(g.begin(), g.end());
   }
@@ -664,8 +748,8 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
       if (a == b || b == c || a == c) continue;  // a non-consecutive repeat after merging
       medial.faces.push_back({a, b, c});
       polygon.push_back(facets);
-      label_p.push_back(static_cast<int>(s.p));
-      label_q.push_back(static_cast<int>(s.q));
+      label_p.push_back(static_cast<int>(original[s.p]));
+      label_q.push_back(static_cast<int>(original[s.q]));
       label_conditions.push_back(s.bits);
       label_unbounded.push_back(s.open ? 1 : 0);
       field_angle.push_back(angle);
@@ -674,11 +758,33 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
     ++facets;
   }
   info.facets = static_cast<std::size_t>(facets);
-  if (options.parallel) tbb::parallel_sort(edges.begin(), edges.end());
-  else std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end(),
-                          [](const EdgeRecord& x, const EdgeRecord& y) { return x.a == y.a && x.b == y.b; }),
-              edges.end());
+  // Sorted by (a, b), each edge once (a Voronoi edge bounds up to three selected facets): a
+  // counting sort by a, then each (short) bucket sorted and deduplicated.
+  {
+    const std::size_t nv = medial.centres.size();
+    std::vector<std::size_t> start(nv + 1, 0);
+    for (const EdgeRecord& e : edges) ++start[e.a + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<EdgeRecord> bucketed(edges.size());
+    {
+      std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+      for (const EdgeRecord& e : edges) bucketed[cursor[e.a]++] = e;
+    }
+    std::vector<std::uint32_t> kept(nv, 0);
+    const auto sort_bucket = [&](std::size_t v) {
+      const auto first = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]);
+      const auto last = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+      std::sort(first, last);
+      kept[v] = static_cast<std::uint32_t>(
+          std::unique(first, last, [](const EdgeRecord& x, const EdgeRecord& y) { return x.b == y.b; }) - first);
+    };
+    if (options.parallel) tbb::parallel_for(std::size_t{0}, nv, sort_bucket);
+    else for (std::size_t v = 0; v < nv; ++v) sort_bucket(v);
+    edges.clear();
+    for (std::size_t v = 0; v < nv; ++v)
+      edges.insert(edges.end(), bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]),
+                   bucketed.begin() + static_cast<std::ptrdiff_t>(start[v] + kept[v]));
+  }
   medial.edges.reserve(edges.size());
   auto& diagonal_label = medial.edge_props.labels.add("fan_diagonal", 0);
   diagonal_label.reserve(edges.size());

@@ -1,0 +1,159 @@
+// MEDIAL (Dey & Zhao 2004) on dense Poisson-disk samples of koala.obj (100k and 1M points): the
+// total time split into the Delaunay tetrahedralization and the filtering (poles, umbrellas, the
+// two conditions on every Delaunay edge, rings of the selected edges, the inner selection, the
+// output complex), beside the paper's Table 1.
+//
+//   build-bench/bin/bench_dey_zhao [--benchmark_filter=1M] [--meshes DIR]
+//
+// Targets: filtering <= Delaunay. The paper (Table 1, CGAL 2.3, 933 MHz, one core): filter
+// 160-266 us per point, Delaunay 593-3257 us per point (filter / Delaunay 0.05-0.35).
+// `dey_zhao/<n>` runs with both cores (TBB), `.../sequential` on one thread (the paper's
+// setting); `.../inner_none` skips the inner selection (the paper's filter time excludes its
+// TIGHT COCONE step). Each configuration is repeated and the fastest run is kept (the machine is
+// shared); the counters are that run's phases.
+#include "medial.hpp"
+
+#include <medax/io.hpp>
+#include <medax/services/delaunay.hpp>
+#include <medax/services/poisson.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+namespace {
+
+using namespace medax;
+using Clock = std::chrono::steady_clock;
+
+std::filesystem::path meshes_dir = MEDAX_SHARED_MESHES_DIR;
+
+const SurfaceMesh& koala() {
+  static const SurfaceMesh mesh = read_mesh(meshes_dir / "koala.obj");
+  return mesh;
+}
+
+/// Poisson-disk samples of koala (cached beside the binary: 1M samples take a while to make).
+const OrientedSamples& samples(std::size_t n) {
+  static std::map<std::size_t, OrientedSamples> cache;
+  auto it = cache.find(n);
+  if (it != cache.end()) return it->second;
+  const std::filesystem::path file = "bench_dey_zhao_koala_" + std::to_string(n) + ".bin";
+  OrientedSamples s;
+  std::ifstream in(file, std::ios::binary);
+  std::uint64_t count = 0;
+  if (in && in.read(reinterpret_cast<char*>(&count), sizeof count) && count == n) {
+    s.points.resize(n);
+    s.normals.resize(n);
+    in.read(reinterpret_cast<char*>(s.points.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
+    in.read(reinterpret_cast<char*>(s.normals.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
+  }
+  if (!in) {
+    const auto t0 = Clock::now();
+    std::mt19937_64 rng(1);
+    s = services::sample_poisson_count(koala(), n, rng);
+    std::cerr << "sampled " << n << " Poisson-disk points of koala in "
+              << std::chrono::duration<double>(Clock::now() - t0).count() << " s\n";
+    std::ofstream out(file, std::ios::binary);
+    count = n;
+    out.write(reinterpret_cast<const char*>(&count), sizeof count);
+    out.write(reinterpret_cast<const char*>(s.points.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
+    out.write(reinterpret_cast<const char*>(s.normals.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
+  }
+  return cache.emplace(n, std::move(s)).first->second;
+}
+
+void BM_Delaunay(benchmark::State& state, std::size_t n) {
+  const OrientedSamples& s = samples(n);
+  double best = 1e300;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    const auto dt = services::delaunay_tetrahedralize(s.points);
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+    benchmark::DoNotOptimize(dt.cells.data());
+  }
+  state.counters["s_min"] = best;
+  state.counters["us_per_point"] = 1e6 * best / static_cast<double>(n);
+}
+
+void BM_DeyZhao(benchmark::State& state, std::string name, std::size_t n, bool parallel,
+                dey_zhao::InnerSelection inner) {
+  const OrientedSamples& s = samples(n);
+  dey_zhao::MedialInput input;
+  input.points = &s.points;
+  input.normals = &s.normals;
+  input.mesh = &koala();
+  dey_zhao::MedialOptions options;
+  options.parallel = parallel;
+  options.inner = inner;
+  options.generator_kind = "sample";
+  dey_zhao::MedialReport best;
+  double best_total = 1e300;
+  std::size_t faces = 0;
+  for (auto _ : state) {
+    dey_zhao::MedialReport report;
+    const auto t0 = Clock::now();
+    const MedialComplex m = dey_zhao::medial_axis(input, options, &report);
+    const double total = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (total < best_total) best_total = total, best = report;
+    faces = m.faces.size();
+  }
+  const double points = static_cast<double>(n);
+  state.counters["s_total"] = best_total;
+  state.counters["s_delaunay"] = best.seconds_delaunay;
+  state.counters["s_filtering"] = best.seconds_filtering();
+  state.counters["s_umbrellas"] = best.seconds_umbrellas;
+  state.counters["s_conditions"] = best.seconds_filter;
+  state.counters["s_inner"] = best.seconds_inner;
+  state.counters["s_complex"] = best.seconds_complex;
+  state.counters["filter/delaunay"] = best.seconds_filtering() / best.seconds_delaunay;
+  state.counters["filter_us_pt"] = 1e6 * best.seconds_filtering() / points;
+  state.counters["delaunay_us_pt"] = 1e6 * best.seconds_delaunay / points;
+  state.counters["selected"] = static_cast<double>(best.selected);
+  state.counters["facets"] = static_cast<double>(best.facets);
+  state.counters["triangles"] = static_cast<double>(faces);
+  std::printf("%s: %zu points, %zu cells, %zu edges: Delaunay %.3f s (%.1f us/pt), filtering %.3f s (%.2f us/pt) "
+              "= umbrellas %.3f + conditions %.3f + inner (%s) %.3f + complex %.3f; filter/Delaunay %.2f; "
+              "selected %zu, inner facets %zu\n",
+              name.c_str(), n, best.cells, best.delaunay_edges, best.seconds_delaunay,
+              1e6 * best.seconds_delaunay / points, best.seconds_filtering(), 1e6 * best.seconds_filtering() / points,
+              best.seconds_umbrellas, best.seconds_filter, dey_zhao::to_string(best.inner_used), best.seconds_inner,
+              best.seconds_complex, best.seconds_filtering() / best.seconds_delaunay, best.selected, best.facets);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::strcmp(argv[i], "--meshes") == 0) meshes_dir = argv[i + 1];
+  if (!std::filesystem::exists(meshes_dir / "koala.obj")) {
+    std::cerr << "koala.obj not found in " << meshes_dir << "\n";
+    return 1;
+  }
+  for (std::size_t n : {std::size_t{100000}, std::size_t{1000000}}) {
+    const std::string tag = n == 1000000 ? "1M" : std::to_string(n / 1000) + "k";
+    const int reps = n == 1000000 ? 3 : 5;
+    benchmark::RegisterBenchmark(("delaunay/" + tag).c_str(), BM_Delaunay, n)
+        ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(reps);
+    benchmark::RegisterBenchmark(("dey_zhao/" + tag).c_str(), BM_DeyZhao, "dey_zhao/" + tag, n, true,
+                                 dey_zhao::InnerSelection::Auto)
+        ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(reps);
+    benchmark::RegisterBenchmark(("dey_zhao/" + tag + "/inner_none").c_str(), BM_DeyZhao,
+                                 "dey_zhao/" + tag + "/inner_none", n, true, dey_zhao::InnerSelection::None)
+        ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(reps);
+    benchmark::RegisterBenchmark(("dey_zhao/" + tag + "/sequential").c_str(), BM_DeyZhao,
+                                 "dey_zhao/" + tag + "/sequential", n, false, dey_zhao::InnerSelection::Auto)
+        ->Unit(benchmark::kSecond)->UseRealTime()->Iterations(reps);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  std::printf("paper (Dey & Zhao 2004, Table 1; CGAL 2.3, 933 MHz, one core): filter 160-266 us per point, "
+              "Delaunay 593-3257 us per point, filter/Delaunay 0.05-0.35\n");
+}

@@ -16,10 +16,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// `inputs`, `sweep`, `plots` and `limits` belong to experiments (sweep_config.cpp); a single run
+// `inputs`, `sweep`, `plots`, `limits` and `table` belong to experiments (sweep_config.cpp); a single run
 // ignores them.
 const std::vector<std::string> kTopKeys{"medax", "name",  "seed",  "input",  "medial_input", "stages",
-                                        "outputs", "inputs", "sweep", "plots", "limits"};
+                                        "outputs", "inputs", "sweep", "plots", "limits", "table"};
 const std::vector<std::string> kStageKeys{"plugin", "id", "params", "enabled"};
 const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
 const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};

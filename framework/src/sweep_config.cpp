@@ -202,6 +202,12 @@ SweepConfig load_sweep(const fs::path& pipeline) {
       }
   }
 
+  if (const YAML::Node table = root["table"]) {
+    if (!table.IsSequence()) diag.error(table, "`table:` is the list of results.csv columns results.md shows");
+    else
+      for (const YAML::Node& c : table) config.table_columns.push_back(c.Scalar());
+  }
+
   if (const YAML::Node limits = root["limits"]) {
     const auto positive = [&](const char* key, double& out) {
       if (!limits[key]) return;

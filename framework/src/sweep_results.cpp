@@ -155,16 +155,21 @@ std::size_t write_sweep_results(const SweepConfig& config, const std::vector<Swe
       out << '\n';
     }
   });
+  std::vector<std::string> shown = columns;
+  if (!config.table_columns.empty()) {
+    shown = {"job", "input", "status"};
+    shown.insert(shown.end(), config.table_columns.begin(), config.table_columns.end());
+  }
   write_file_atomic(out_dir / "results.md", [&](std::ostream& out) {
     out << fmt::format("# {}\n\n{} jobs from `{}`.\n\n", config.name, rows.size(), config.file.filename().string());
     out << "|";
-    for (const std::string& c : columns) out << ' ' << md_field(c) << " |";
+    for (const std::string& c : shown) out << ' ' << md_field(c) << " |";
     out << "\n|";
-    for (std::size_t i = 0; i < columns.size(); ++i) out << "---|";
+    for (std::size_t i = 0; i < shown.size(); ++i) out << "---|";
     out << '\n';
     for (const Row& row : rows) {
       out << "|";
-      for (const std::string& c : columns) out << ' ' << md_field(cell(row, c)) << " |";
+      for (const std::string& c : shown) out << ' ' << md_field(cell(row, c)) << " |";
       out << '\n';
     }
   });

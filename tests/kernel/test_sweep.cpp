@@ -145,6 +145,7 @@ TEST_CASE("results.csv has one row per job with parameters metrics times and sta
   const fs::path file = write_text(
       dir / "sweep.yaml", "name: schema\ninput: " + data_file("cube.off") +
                               "\nsweep:\n  scale.factor: [0.5, 1, 2]\nplots:\n  - {x: scale.factor, y: c.vertices}\n"
+                              "table: [scale.factor, c.vertices]\n"
                               "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n"
                               "  - {plugin: test_count, id: c}\n");
   const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "out").string() + "'", kPlugins, dir);
@@ -166,7 +167,8 @@ TEST_CASE("results.csv has one row per job with parameters metrics times and sta
   }
   CHECK(column(header, csv_cells(lines[3]), "scale.factor") == "2");
   const std::string md = read_text(dir / "out" / "results.md");
-  CHECK(md.find("| job | input | scale.factor | status |") != std::string::npos);
+  CHECK(md.find("| job | input | status | scale.factor | c.vertices |\n") != std::string::npos);
+  CHECK(md.find("time.total") == std::string::npos);  // results.csv keeps every column
   for (const char* ext : {"png", "svg"}) {
     const fs::path plot = dir / "out" / "plots" / (std::string("c.vertices_vs_scale.factor.") + ext);
     REQUIRE(fs::exists(plot));

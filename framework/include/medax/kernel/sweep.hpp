@@ -37,6 +37,8 @@ struct SweepConfig {
   std::vector<std::filesystem::path> inputs;  ///< absolute, in order
   std::vector<SweepAxis> axes;
   std::vector<PlotSpec> plots;
+  /// Columns of results.md (`table:`); empty: every column. results.csv always has them all.
+  std::vector<std::string> table_columns;
   SweepLimits limits;
 };
 

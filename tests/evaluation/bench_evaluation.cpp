@@ -5,7 +5,7 @@
 // envelopes with a known answer (the table in docs/plugins/evaluation.md).
 #include "counts.hpp"
 #include "reconstruction.hpp"
-#include "voronoi_complex.hpp"
+#include "interior_voronoi.hpp"
 
 #include <medax/io.hpp>
 #include <medax/services/envelope.hpp>
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
   std::printf("mesh %s: %zu vertices, %zu faces\n", path.c_str(), shape.mesh.vertices.size(), shape.mesh.faces.size());
 
   auto t0 = std::chrono::steady_clock::now();
-  const MedialComplex mc = bench::interior_voronoi_complex(shape.mesh);
+  const MedialComplex mc = voronoi::interior_voronoi(shape.mesh.vertices, shape.mesh);
   std::printf("interior Voronoi complex: %zu vertices, %zu edges, %zu faces (%.2f s)\n", mc.num_vertices(),
               mc.edges.size(), mc.faces.size(), seconds_since(t0));
 

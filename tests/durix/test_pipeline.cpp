@@ -1,5 +1,7 @@
 // The durix package through the kernel: loaded from its .so, run as a pipeline, outputs in the
 // run folder, deterministic bytes, and the refusal of a non-Delaunay input.
+#include "pipeline_run.hpp"
+
 #include <medax/io.hpp>
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
@@ -25,13 +27,9 @@ std::string slurp(const std::filesystem::path& p) {
 
 RunResult run(Registry& registry, const std::filesystem::path& dir, const std::string& stages,
               const std::string& out) {
-  std::ofstream(dir / "pipeline.yaml") << "name: durix_test\nseed: 0\ninput: box.off\nstages:\n" << stages
-                                       << "outputs: {medial: [ma, ply]}\n";
-  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
-  RunOptions options;
-  options.out_dir = dir / out;
-  options.quiet = true;
-  return run_pipeline(config, options);
+  return test::run_yaml_text(dir, "name: durix_test\nseed: 0\ninput: box.off\nstages:\n" + stages +
+                                      "outputs: {medial: [ma, ply]}\n",
+                             registry, out);
 }
 
 }  // namespace

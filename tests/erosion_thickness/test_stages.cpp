@@ -1,5 +1,6 @@
 // The erosion_thickness package's stages called directly (fields, parameters, the clean-up, the
 // local measures) and through a pipeline with the built plugin.
+#include "pipeline_run.hpp"
 #include "erosion_thickness.hpp"
 #include "fixtures.hpp"
 #include "local_measures.hpp"
@@ -249,19 +250,15 @@ TEST_CASE("The erosion_thickness package loads and runs in a pipeline", "[pipeli
   write_mesh(dir / "box.off", medax::testing::make_box(0.5, 0.5, 0.5, 1));
   write_medial(dir / "book.ma", fx::make_book(1.0, 0.1, 0.3, 0.005, 20, 40));
   for (const char* last : {"et_skeleton", "et_medial_curves"}) {
-    std::ofstream(dir / "pipeline.yaml") << "name: et\nseed: 0\ninput: box.off\nmedial_input: book.ma\n"
-                                            "stages:\n"
-                                            "  - plugin: pure_complex\n"
-                                            "  - plugin: erosion_thickness\n"
-                                            "    params: {omega: 0.01}\n"
-                                            "  - plugin: "
-                                         << last << "\n    params: {omega: 0.01}\n"
-                                         << "outputs: {medial: [ma, ply]}\n";
-    const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
-    RunOptions options;
-    options.out_dir = dir / last;
-    options.quiet = true;
-    const RunResult result = run_pipeline(config, options);
+    const RunResult result = test::run_yaml_text(dir,
+                                                 "name: et\nseed: 0\ninput: box.off\nmedial_input: book.ma\n"
+                                                 "stages:\n"
+                                                 "  - plugin: pure_complex\n"
+                                                 "  - plugin: erosion_thickness\n"
+                                                 "    params: {omega: 0.01}\n"
+                                                 "  - plugin: " + std::string(last) + "\n    params: {omega: 0.01}\n"
+                                                 "outputs: {medial: [ma, ply]}\n",
+                                                 registry, last);
     INFO(result.error);
     REQUIRE(result.ok);
     const MedialComplex out = read_ma(dir / last / "medial.ma");
@@ -288,18 +285,15 @@ TEST_CASE("pipelines/voronoi_et.yaml runs on the bundled mesh and keeps the topo
       return;
     }
   }
-  const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines" / "voronoi_et.yaml", registry);
-  RunOptions options;
-  options.out_dir = test::scratch_dir("voronoi_et_pipeline");
-  options.quiet = true;
-  const RunResult result = run_pipeline(config, options);
+  const std::filesystem::path out_dir = test::scratch_dir("voronoi_et_pipeline");
+  const RunResult result = test::run_quietly(test::source_dir() / "pipelines" / "voronoi_et.yaml", registry, out_dir);
   INFO(result.error);
   REQUIRE(result.ok);
-  std::ifstream in(options.out_dir / "metrics.json");
+  std::ifstream in(out_dir / "metrics.json");
   std::stringstream json;
   json << in.rdbuf();
   // spot is genus 0: the skeleton is connected and has no cycle or cavity.
-  const MedialComplex skeleton = read_ma(options.out_dir / "medial.ma");
+  const MedialComplex skeleton = read_ma(out_dir / "medial.ma");
   const services::ComplexTopology t = services::complex_topology(skeleton);
   CHECK(t.b0 == 1);
   CHECK(t.b1 == 0);

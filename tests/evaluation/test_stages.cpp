@@ -1,5 +1,6 @@
 // The evaluation package: reconstruction metrics on shapes whose envelope distance is known,
 // counts on a hand-built complex, topology, and the package loaded and run in a pipeline.
+#include "pipeline_run.hpp"
 #include "counts.hpp"
 #include "reconstruction.hpp"
 #include "stages.hpp"
@@ -317,17 +318,14 @@ TEST_CASE("evaluation: the evaluation package loads and runs in a pipeline", "[p
   write_mesh(dir / "sphere.off", testing::make_sphere(2.0, 4));
   MedialComplex mc = one_sphere(1.5);
   write_medial(dir / "sphere.ma", mc);
-  std::ofstream(dir / "pipeline.yaml") << "name: evaluation\nseed: 0\ninput: sphere.off\nmedial_input: sphere.ma\n"
-                                          "stages:\n"
-                                          "  - plugin: reconstruction\n    params: {surface_samples: 1000}\n"
-                                          "  - plugin: counts\n"
-                                          "  - plugin: topology\n"
-                                          "outputs: {medial: [ma]}\n";
-  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
-  RunOptions options;
-  options.out_dir = dir / "run";
-  options.quiet = true;
-  const RunResult result = run_pipeline(config, options);
+  const RunResult result = test::run_yaml_text(dir,
+                                               "name: evaluation\nseed: 0\ninput: sphere.off\nmedial_input: sphere.ma\n"
+                                               "stages:\n"
+                                               "  - plugin: reconstruction\n    params: {surface_samples: 1000}\n"
+                                               "  - plugin: counts\n"
+                                               "  - plugin: topology\n"
+                                               "outputs: {medial: [ma]}\n",
+                                               registry);
   INFO(result.error);
   REQUIRE(result.ok);
   std::ifstream in(dir / "run" / "metrics.json");

@@ -1,6 +1,7 @@
 // VMAS (plugins/vmas): the properties of ../shared/specs/huang2024_vmas.md §5 on analytic
 // shapes, the solver's edit API, the edit scripts, both stages (mesh and point cloud) and the
 // package in a pipeline.
+#include "pipeline_run.hpp"
 #include "edits.hpp"
 #include "energy.hpp"
 #include "partition.hpp"
@@ -581,18 +582,12 @@ TEST_CASE("vmas package runs in a pipeline") {
   for (const char* name : {"vmas", "vmas_dual"}) REQUIRE(registry.find(name));
   const auto dir = test::scratch_dir("vmas_pipeline");
   write_mesh(dir / "capsule.off", testing::make_capsule(0.2, 0.6, 24));
-  {
-    std::ofstream y(dir / "pipeline.yaml");
-    y << "name: vmas_test\ninput: capsule.off\nstages:\n"
-         "  - plugin: vmas\n    params:\n      target_spheres: 6\n      edits: |\n"
-         "        - split [0, 0, 0.6] after end\n"
-         "  - plugin: vmas_dual\noutputs:\n  medial: [ma]\n";
-  }
-  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
-  RunOptions options;
-  options.out_dir = dir / "run";
-  options.quiet = true;
-  const RunResult result = run_pipeline(config, options);
+  const RunResult result = test::run_yaml_text(dir,
+                                               "name: vmas_test\ninput: capsule.off\nstages:\n"
+                                               "  - plugin: vmas\n    params:\n      target_spheres: 6\n      edits: |\n"
+                                               "        - split [0, 0, 0.6] after end\n"
+                                               "  - plugin: vmas_dual\noutputs:\n  medial: [ma]\n",
+                                               registry);
   INFO(result.error);
   REQUIRE(result.ok);
   const MedialComplex mc = read_ma(dir / "run" / "medial.ma");

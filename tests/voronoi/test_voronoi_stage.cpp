@@ -1,5 +1,7 @@
 // The `voronoi` stage as shipped: loaded from the built plugin, its declared parameters, its
 // refusals, and a pipeline run that writes the medial axis.
+#include "pipeline_run.hpp"
+
 #include <medax/io.hpp>
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
@@ -105,15 +107,12 @@ TEST_CASE("voronoi stage in a pipeline writes the medial axis of a sphere", "[vo
   const Loaded loaded;
   const auto dir = test::scratch_dir("voronoi_pipeline");
   write_mesh(dir / "sphere.off", testing::make_sphere(2.0, 2));
-  std::ofstream(dir / "pipeline.yaml") << "name: voronoi\nseed: 0\ninput: sphere.off\n"
-                                          "stages:\n"
-                                          "  - plugin: voronoi\n    params: {connectivity: faces}\n"
-                                          "outputs: {medial: [ma, ply]}\n";
-  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", loaded.registry);
-  RunOptions options;
-  options.out_dir = dir / "run";
-  options.quiet = true;
-  const RunResult result = run_pipeline(config, options);
+  const RunResult result = test::run_yaml_text(dir,
+                                               "name: voronoi\nseed: 0\ninput: sphere.off\n"
+                                               "stages:\n"
+                                               "  - plugin: voronoi\n    params: {connectivity: faces}\n"
+                                               "outputs: {medial: [ma, ply]}\n",
+                                               loaded.registry);
   INFO(result.error);
   REQUIRE(result.ok);
   const MedialComplex m = read_ma(dir / "run" / "medial.ma");

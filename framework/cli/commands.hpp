@@ -14,6 +14,7 @@ struct RunArgs {
   std::vector<std::string> settings;
   bool quiet = false;
   bool single_job = false;    ///< --job: run one job of a sweep (set by the sweep runner)
+  bool results_only = false;  ///< --results-only: rewrite a sweep's table and plots, run nothing
   int parallel_jobs = 1;      ///< -j for sweeps
   double timeout = -1;        ///< per-job seconds for sweeps; < 0: from the file
   double memory_mib = -1;     ///< per-job MiB for sweeps; < 0: from the file

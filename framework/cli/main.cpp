@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run->add_option("--timeout", args.timeout, "Sweeps: seconds per job before it is killed (overrides `limits:`)");
   run->add_option("--memory-mib", args.memory_mib, "Sweeps: address-space limit per job (overrides `limits:`)");
+  run->add_flag("--results-only", args.results_only,
+                "Sweeps: rewrite results.csv/md and plots from the job folders (after editing `table:` or `plots:`)");
   run->add_flag("--job", args.single_job, "Run as one job of a sweep (used by the sweep runner)")->group("");
 
   medax::cli::BenchArgs bench_args;

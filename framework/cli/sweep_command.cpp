@@ -60,6 +60,12 @@ int run_sweep(const RunArgs& args) {
   options.medax_executable = boost::dll::program_location().string();
   options.parallel_jobs = args.parallel_jobs;
   options.quiet = args.quiet;
+  if (args.results_only) {
+    const std::size_t rows = write_sweep_results(config, jobs, options.out_dir);
+    fmt::print("results: {} ({} rows)\n",
+               std::filesystem::absolute(options.out_dir / "results.csv").lexically_normal().string(), rows);
+    return 0;
+  }
   if (!args.quiet)
     fmt::print(stderr, "[sweep] {} jobs ({} inputs x {} combinations), {} at a time, into {}\n", jobs.size(),
                config.inputs.size(), config.inputs.empty() ? 0 : jobs.size() / config.inputs.size(),

@@ -192,12 +192,17 @@ SweepConfig load_sweep(const fs::path& pipeline) {
     else
       for (const YAML::Node& p : plots) {
         if (!p.IsMap() || !p["x"] || !p["y"]) {
-          diag.error(p, "a plot is {x: COLUMN, y: COLUMN, series: COLUMN, log_x: bool, log_y: bool}");
+          diag.error(p, "a plot is {x: COLUMN, y: COLUMN, series: COLUMN, log_x: bool, log_y: bool, style: lines|points}");
           continue;
         }
         PlotSpec spec{p["x"].Scalar(), p["y"].Scalar(), p["series"] ? p["series"].Scalar() : "input"};
         spec.log_x = p["log_x"] && p["log_x"].as<bool>(false);
         spec.log_y = p["log_y"] && p["log_y"].as<bool>(false);
+        if (p["style"]) {
+          if (p["style"].Scalar() != "points" && p["style"].Scalar() != "lines")
+            diag.error(p["style"], "a plot's `style` is `lines` (curves through the points) or `points` (a scatter)");
+          spec.points_only = p["style"].Scalar() == "points";
+        }
         config.plots.push_back(spec);
       }
   }

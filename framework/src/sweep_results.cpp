@@ -91,7 +91,11 @@ std::vector<PlotSpec> default_plots(const SweepConfig& config, const std::vector
       const bool numeric = std::all_of(axis.values.begin(), axis.values.end(), is_number);
       if (numeric && axis.values.size() > 1) plots.push_back({axis.key, y, "input"});
     }
-    for (const std::string& x : counts) plots.push_back({x, y, "input"});
+    for (const std::string& x : counts) {
+      PlotSpec scatter{x, y, "input"};
+      scatter.points_only = true;  // one point per job, across meshes: no curve to draw
+      plots.push_back(scatter);
+    }
   }
   return plots;
 }
@@ -116,7 +120,8 @@ void draw(const PlotSpec& plot, const std::vector<Row>& rows, const fs::path& pl
     write_file_atomic(data, [&](std::ostream& out) {
       for (const auto& [x, y] : points) out << fmt::format("{} {}\n", x, y);
     });
-    plot_command += fmt::format("{}'{}' using 1:2 with linespoints title '{}'", k ? ", " : "", data.string(), name);
+    plot_command += fmt::format("{}'{}' using 1:2 with {} title '{}'", k ? ", " : "", data.string(),
+                                plot.points_only ? "points pointsize 1.5" : "linespoints", name);
     ++k;
   }
   const fs::path script = plot_dir / (stem + ".gp");
@@ -125,7 +130,8 @@ void draw(const PlotSpec& plot, const std::vector<Row>& rows, const fs::path& pl
     out << fmt::format("set xlabel '{}'\nset ylabel '{}'\n", plot.x, plot.y);
     if (plot.log_x) out << "set logscale x\n";
     if (plot.log_y) out << "set logscale y\n";
-    for (const char* terminal : {"pngcairo size 900,600", "svg size 900,600"}) {
+    // noenhanced: column names like recon.hausdorff_pct are text, not subscripts.
+    for (const char* terminal : {"pngcairo noenhanced size 900,600", "svg noenhanced size 900,600"}) {
       const std::string ext = std::string(terminal).rfind("svg", 0) == 0 ? "svg" : "png";
       out << fmt::format("set terminal {}\nset output '{}'\n{}\n", terminal, (plot_dir / (stem + "." + ext)).string(),
                          plot_command);

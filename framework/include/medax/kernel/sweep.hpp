@@ -24,6 +24,7 @@ struct PlotSpec {
   std::string x, y;        ///< results.csv column names
   std::string series;      ///< column whose values make one curve each (default: input)
   bool log_x = false, log_y = false;
+  bool points_only = false;  ///< `style: points`: a scatter (e.g. across meshes), no lines
 };
 
 struct SweepLimits {

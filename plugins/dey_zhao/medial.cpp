@@ -2,6 +2,8 @@
 
 #include "inner.hpp"
 
+#include <medax/services/delaunay_rings.hpp>
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_group.h>
@@ -33,9 +35,6 @@ using services::DelaunayTetrahedralization;
 using Clock = std::chrono::steady_clock;
 constexpr std::int64_t kInf = DelaunayTetrahedralization::kInfinite;
 constexpr Index kNone = ~Index{0};
-// The six edges of a cell: corner positions i, j of the edge, then the other two.
-constexpr int kEdgePositions[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
-                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
 constexpr std::size_t kBlock = 4096;  // cells per parallel work unit (fixed: output independent of the schedule)
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -46,18 +45,6 @@ void for_blocks(std::size_t n, bool parallel, const Body& body) {
   const auto run = [&](std::size_t b) { body(b, b * kBlock, std::min(n, (b + 1) * kBlock)); };
   if (parallel) tbb::parallel_for(std::size_t{0}, blocks, run);
   else for (std::size_t b = 0; b < blocks; ++b) run(b);
-}
-
-/// Sign of the permutation (e[0], e[1], e[2], e[3]) of (0, 1, 2, 3).
-constexpr int permutation_sign(const int* e) {
-  int inversions = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) inversions += e[i] > e[j];
-  return inversions % 2 ? -1 : 1;
-}
-
-inline int position(const std::array<Index, 4>& corner, Index v) {
-  return corner[0] == v ? 0 : corner[1] == v ? 1 : corner[2] == v ? 2 : 3;
 }
 
 /// The three corners of facet k of a cell, in increasing position order.
@@ -323,44 +310,23 @@ bool passes_any(const std::vector<Vec3>& P, const Umbrellas& u, Index p, Index q
   return false;
 }
 
-/// Walks around the edge (u, w) from cell c, first across the facet opposite `cross`, appending
-/// the cells after c to `out`. Returns 1 when back at c (a closed ring), 0 at the hull (`ray` =
-/// the hull facet reached), −1 at a cell lower than c (c does not own the edge).
-int walk(const DelaunayTetrahedralization& dt, Index c, Index u, Index w, Index cross, Index keep,
-         std::vector<Index>& out, std::int64_t& ray) {
-  Index current = c;
-  for (;;) {
-    const auto& corner = dt.cells[current];
-    const int k = position(corner, cross);
-    const std::int64_t next = dt.neighbours[current][k];
-    if (next == kInf) {
-      ray = static_cast<std::int64_t>(current) * 4 + k;
-      return 0;
-    }
-    if (next == static_cast<std::int64_t>(c)) return 1;
-    if (next < static_cast<std::int64_t>(c)) return -1;
-    out.push_back(static_cast<Index>(next));
-    const auto& n = dt.cells[next];
-    Index fresh = n[0];
-    for (Index x : n)
-      if (x != u && x != w && x != keep) fresh = x;
-    cross = keep;
-    keep = fresh;
-    current = static_cast<Index>(next);
-  }
-}
-
 /// `original[i]`: the caller's index of point i; p and q of an edge are ordered by it.
 void select_block(const std::vector<Vec3>& P, const std::vector<Index>& original, const DelaunayTetrahedralization& dt,
                   const Umbrellas& u, const MedialOptions& options, std::size_t begin, std::size_t end,
                   SelectionBlock& out) {
   std::vector<Index> forward, backward;
   const double sin_theta = std::sin(options.theta);
+  const auto corners = [&](Index c) -> const std::array<Index, 4>& { return dt.cells[c]; };
+  const auto neighbour = [&](Index c, int k) {
+    const std::int64_t nb = dt.neighbours[c][k];
+    return nb == kInf ? kNone : static_cast<Index>(nb);
+  };
   for (std::size_t ci = begin; ci < end; ++ci) {
     const Index c = static_cast<Index>(ci);
     const auto& corner = dt.cells[c];
     const auto& nb = dt.neighbours[c];
-    for (const auto& e : kEdgePositions) {
+    for (int edge = 0; edge < 6; ++edge) {
+      const int* e = services::kCellEdges[edge];
       // c's two ring neighbours around the edge are across the facets opposite the two other
       // corners: when one is lower, c is not the lowest cell of the ring, which owns the edge.
       const std::int64_t left = nb[e[2]], right = nb[e[3]];
@@ -370,25 +336,35 @@ void select_block(const std::vector<Vec3>& P, const std::vector<Index>& original
       const bool forward_edge = original[uu] < original[ww];
       const Index p = forward_edge ? uu : ww, q = forward_edge ? ww : uu;
       if (!passes_any(P, u, p, q, options, sin_theta)) continue;
-      // Orientation: for a positively oriented cell, orient(u, w, a, b) has the sign of the
-      // permutation e; when positive, a → b turns counter-clockwise about u → w, and crossing
-      // the facet opposite a walks on counter-clockwise.
+      // Orientation: the cells are positively oriented, so crossing first the facet opposite a
+      // (cell_edge_sign > 0) or b walks counter-clockwise about u → w.
       const Index a = corner[e[2]], b = corner[e[3]];
-      const bool ccw = permutation_sign(e) > 0;
+      const bool ccw = services::cell_edge_sign(edge) > 0;
       const Index cross = ccw ? a : b, keep = ccw ? b : a;
+      // c owns the edge when it is the lowest cell of the ring (or of the chain between two hull
+      // facets, walked both ways).
       forward.assign(1, c);
+      Index end_cell = kNone;
+      int end_facet = 0;
       std::int64_t last_ray = -1, first_ray = -1;
-      const int closed = walk(dt, c, uu, ww, cross, keep, forward, last_ray);
-      if (closed < 0) continue;
+      const services::RingEnd closed = services::walk_edge_ring(c, uu, ww, cross, keep, corners, neighbour, kNone,
+                                                                forward, ~std::size_t{0}, &end_cell, &end_facet);
+      if (closed == services::RingEnd::Lower) continue;
       backward.clear();
-      if (closed == 0 && walk(dt, c, uu, ww, keep, cross, backward, first_ray) < 0) continue;
+      if (closed == services::RingEnd::Boundary) {
+        last_ray = static_cast<std::int64_t>(end_cell) * 4 + end_facet;
+        if (services::walk_edge_ring(c, uu, ww, keep, cross, corners, neighbour, kNone, backward, ~std::size_t{0},
+                                     &end_cell, &end_facet) != services::RingEnd::Boundary)
+          continue;
+        first_ray = static_cast<std::int64_t>(end_cell) * 4 + end_facet;
+      }
       // c owns the edge: it is selected. Its scores (fields) and condition bits (label).
       const EdgeScores scores = score_edge(P, u, p, q);
       const int bits = condition_bits(scores, options, sin_theta);
       if (!bits) continue;  // never: passes_any() makes the same tests
       if (bits & (kAngleP | kAngleQ)) ++out.angle;
       if (bits & (kRatioP | kRatioQ)) ++out.ratio;
-      const bool open = closed == 0;
+      const bool open = closed == services::RingEnd::Boundary;
       if (open) {
         ++out.unbounded;
         if (options.unbounded == Unbounded::Drop) {

@@ -3,6 +3,7 @@
 #include "ray_parity.hpp"
 
 #include <medax/services/delaunay.hpp>
+#include <medax/services/delaunay_rings.hpp>
 #include <medax/services/inside.hpp>
 
 #include <tbb/blocked_range.h>
@@ -24,8 +25,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 constexpr Index kNone = ~Index{0};
-constexpr int kEdgePositions[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
-                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};  // i, j, then the other two
 constexpr std::size_t kBlock = 2048;  // items per parallel work unit (fixed, so the output does not depend on the schedule)
 
 /// An interior cell, in the compact numbering of the medial vertices: its corners and its four
@@ -35,10 +34,6 @@ struct Node {
   std::array<Index, 4> corner;
   std::array<Index, 4> neighbour;
 };
-
-inline int position(const std::array<Index, 4>& corner, Index v) {
-  return corner[0] == v ? 0 : corner[1] == v ? 1 : corner[2] == v ? 2 : 3;
-}
 
 /// The triangles, fan diagonals and polygon count produced by one block of vertices.
 struct FaceBlock {
@@ -53,36 +48,21 @@ struct FaceBlock {
 /// vertex. The ring is fan-triangulated from i.
 void faces_of_block(const std::vector<Node>& nodes, Index begin, Index end, FaceBlock& out) {
   std::vector<Index> ring;
+  const auto corners = [&](Index c) -> const std::array<Index, 4>& { return nodes[c].corner; };
+  const auto neighbour = [&](Index c, int k) { return nodes[c].neighbour[k]; };
   for (Index i = begin; i < end; ++i) {
     const Node& node = nodes[i];
-    for (const auto& e : kEdgePositions) {
+    for (const auto& e : services::kCellEdges) {
       // i's two neighbours in the ring around the edge are across the facets opposite the other
       // two corners: when one is lower or not interior (kNone is the highest), i owns no polygon.
       const Index left = node.neighbour[e[2]], right = node.neighbour[e[3]];
       if (left < i || right < i || left == kNone || right == kNone) continue;
       const Index u = node.corner[e[0]], w = node.corner[e[1]];
-      Index cross = node.corner[e[2]], keep = node.corner[e[3]];
-      Index current = i;
       ring.assign(1, i);
-      bool owned = true;
-      for (;;) {
-        const Node& at = nodes[current];
-        const Index next = at.neighbour[position(at.corner, cross)];
-        if (next == i) break;
-        if (next < i || next == kNone || ring.size() > 4096) {
-          owned = false;
-          break;
-        }
-        ring.push_back(next);
-        const auto& n = nodes[next].corner;
-        Index fresh = n[0];
-        for (Index v : n)
-          if (v != u && v != w && v != keep) fresh = v;
-        cross = keep;
-        keep = fresh;
-        current = next;
-      }
-      if (!owned) continue;
+      // Owned when the ring closes without meeting a lower or exterior cell.
+      if (services::walk_edge_ring(i, u, w, node.corner[e[2]], node.corner[e[3]], corners, neighbour, kNone, ring,
+                                   4096) != services::RingEnd::Closed)
+        continue;
       for (std::size_t k = 1; k + 1 < ring.size(); ++k) {
         out.faces.push_back({i, ring[k], ring[k + 1]});
         out.polygon.push_back(out.polygons);

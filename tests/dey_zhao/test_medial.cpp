@@ -75,7 +75,7 @@ void check_structure(const MedialComplex& m, const std::vector<Vec3>& points) {
 
 }  // namespace
 
-TEST_CASE("dey_zhao: facets are dual to their Delaunay edges, oriented along p to q", "[dey_zhao][structure]") {
+TEST_CASE("dey_zhao: facets are dual to their Delaunay edges and oriented along p to q", "[dey_zhao][structure]") {
   for (int shape = 0; shape < 2; ++shape) {
     const dz_test::Sampled s = shape ? dz_test::torus(1.0, 0.35, 4000) : dz_test::ellipsoid(1.0, 0.7, 0.4, 4000);
     for (InnerSelection inner : {InnerSelection::Mesh, InnerSelection::None}) {
@@ -193,7 +193,7 @@ TEST_CASE("dey_zhao: cospherical points (an exact sphere) put every vertex at th
   REQUIRE_NOTHROW(m.validate());
 }
 
-TEST_CASE("dey_zhao: a grid box (cospherical groups, non-smooth) runs and reports its degenerate facets",
+TEST_CASE("dey_zhao: a grid box (cospherical groups and sharp edges) runs and reports its degenerate facets",
           "[dey_zhao][degenerate]") {
   const SurfaceMesh box = testing::make_box(1.0, 0.6, 0.4, 12);
   dey_zhao::MedialInput in;
@@ -211,7 +211,7 @@ TEST_CASE("dey_zhao: a grid box (cospherical groups, non-smooth) runs and report
   for (const Vec3& c : m.centres) CHECK((c.cwiseAbs() - Vec3(1.0, 0.6, 0.4)).maxCoeff() <= 1e-9);
 }
 
-TEST_CASE("dey_zhao: unbounded facets are dropped and counted, or clipped", "[dey_zhao][unbounded]") {
+TEST_CASE("dey_zhao: unbounded facets are dropped and counted or clipped", "[dey_zhao][unbounded]") {
   const dz_test::Sampled s = dz_test::torus(1.0, 0.35, 3000);
   dey_zhao::MedialOptions drop = dz_test::with_inner(InnerSelection::None);
   dey_zhao::MedialOptions clip = drop;

@@ -39,7 +39,7 @@ struct Loaded {
 
 }  // namespace
 
-TEST_CASE("dey_zhao stage: declared parameters, package and docs", "[dey_zhao][stage]") {
+TEST_CASE("dey_zhao stage: declared parameters and package and docs", "[dey_zhao][stage]") {
   const Loaded loaded;
   const StageInfo& info = loaded.stage->info();
   CHECK(info.role == Role::Extraction);
@@ -63,7 +63,7 @@ TEST_CASE("dey_zhao stage: declared parameters, package and docs", "[dey_zhao][s
   CHECK(std::filesystem::exists(test::source_dir() / info.doc));
 }
 
-TEST_CASE("dey_zhao stage: extracts from samples or vertices, and refuses what it cannot use", "[dey_zhao][stage]") {
+TEST_CASE("dey_zhao stage: extracts from samples or vertices and refuses what it cannot use", "[dey_zhao][stage]") {
   const Loaded loaded;
   Scene scene;
   scene.shape.mesh = testing::make_torus(1.0, 0.35, 96, 32);

@@ -409,7 +409,7 @@ struct UnionFind {
 // ---------------------------------------------------------------------------------------------
 
 MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options, MedialReport* report) {
-  if (!input.points) throw std::invalid_argument("dey_zhao: no points");
+  if (!input.points) throw std::invalid_argument("no points");
   MedialReport info;
   auto t0 = Clock::now();
   // Everything below runs on the points renumbered along a space-filling curve (locality);

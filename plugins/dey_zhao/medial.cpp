@@ -649,16 +649,24 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
   rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
   MedialComplex medial;
   medial.generator_kind = options.generator_kind;
-  for (std::size_t c = 0; c < n; ++c) {
-    if (cell_vertex[c] == kNone) continue;
-    cell_vertex[c] = static_cast<Index>(medial.centres.size());
-    medial.centres.push_back(cc[c]);
-    medial.radii.push_back(dt.circumradii[c]);
-    std::array<Index, 4> g;
-    for (int k = 0; k < 4; ++k) g[k] = original[dt.cells[c][k]];
-    std::sort(g.begin(), g.end());
-    medial.generators.emplace_back(g.begin(), g.end());
-  }
+  Index vertices = 0;
+  for (std::size_t c = 0; c < n; ++c)
+    if (cell_vertex[c] != kNone) cell_vertex[c] = vertices++;
+  medial.centres.resize(vertices);
+  medial.radii.resize(vertices);
+  medial.generators.resize(vertices);
+  for_blocks(n, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const Index v = cell_vertex[c];
+      if (v == kNone) continue;
+      medial.centres[v] = cc[c];
+      medial.radii[v] = dt.circumradii[c];
+      std::array<Index, 4> g;
+      for (int k = 0; k < 4; ++k) g[k] = original[dt.cells[c][k]];
+      std::sort(g.begin(), g.end());
+      medial.generators[v].assign(g.begin(), g.end());
+    }
+  });
   const Index first_ray_vertex = static_cast<Index>(medial.centres.size());
   const double ray_length = options.clip_factor * diagonal;
   for (std::int64_t ray : rays) {
@@ -676,6 +684,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
     return first_ray_vertex + static_cast<Index>(std::lower_bound(rays.begin(), rays.end(), ray) - rays.begin());
   };
 
+  // The facets, fan-triangulated, in blocks of kept facets (fixed blocks, concatenated in order).
   struct EdgeRecord {
     Index a, b;
     int diagonal, clipped;
@@ -683,56 +692,95 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
       return a != o.a ? a < o.a : b != o.b ? b < o.b : diagonal != o.diagonal ? diagonal < o.diagonal : clipped > o.clipped;
     }
   };
-  std::vector<EdgeRecord> edges;
-  auto& polygon = medial.face_props.labels.add("polygon", 0);
-  auto& label_p = medial.face_props.labels.add("p", 0);
-  auto& label_q = medial.face_props.labels.add("q", 0);
-  auto& label_conditions = medial.face_props.labels.add("conditions", 0);
-  auto& label_unbounded = medial.face_props.labels.add("unbounded", 0);
-  auto& field_angle = medial.face_props.fields.add("angle", 0);
-  auto& field_ratio = medial.face_props.fields.add("ratio", 0);
-  std::vector<Index> cycle;
-  int facets = 0;
-  for (std::size_t i = 0; i < selected.size(); ++i) {
-    if (!keep[i]) continue;
-    const Selected& s = selected[i];
-    cycle.clear();
-    if (s.open) cycle.push_back(ray_vertex(s.first_ray));
-    for (std::uint32_t k = 0; k < s.ring_size; ++k) {
-      const Index vtx = cell_vertex[representative(rings[s.ring_begin + k])];
-      if (cycle.empty() || cycle.back() != vtx) cycle.push_back(vtx);
-    }
-    if (s.open) cycle.push_back(ray_vertex(s.last_ray));
-    while (cycle.size() > 1 && cycle.back() == cycle.front()) cycle.pop_back();
-    const std::size_t m = cycle.size();
+  struct FacetBlock {
+    std::vector<Tri> faces;
+    std::vector<int> polygon, p, q, conditions, unbounded;
+    std::vector<double> angle, ratio;
+    std::vector<EdgeRecord> edges;
+    int facets = 0, degenerate = 0;
+  };
+  std::vector<std::uint32_t> kept_facets;
+  for (std::size_t i = 0; i < selected.size(); ++i)
+    if (keep[i]) kept_facets.push_back(static_cast<std::uint32_t>(i));
+  std::vector<FacetBlock> facet_blocks((kept_facets.size() + kBlock - 1) / kBlock);
+  for_blocks(kept_facets.size(), options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    FacetBlock& out = facet_blocks[b];
+    std::vector<Index> cycle;
     const auto is_ray = [&](Index x) { return x >= first_ray_vertex; };
-    for (std::size_t k = 0; k < m && m > 1; ++k) {
-      const Index a = cycle[k], b = cycle[(k + 1) % m];
-      if (m == 2 && k == 1) break;  // a segment: one edge
-      if (a != b) edges.push_back({std::min(a, b), std::max(a, b), 0, is_ray(a) || is_ray(b)});
+    for (std::size_t j = begin; j < end; ++j) {
+      const Selected& s = selected[kept_facets[j]];
+      cycle.clear();
+      if (s.open) cycle.push_back(ray_vertex(s.first_ray));
+      for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+        const Index vtx = cell_vertex[representative(rings[s.ring_begin + k])];
+        if (cycle.empty() || cycle.back() != vtx) cycle.push_back(vtx);
+      }
+      if (s.open) cycle.push_back(ray_vertex(s.last_ray));
+      while (cycle.size() > 1 && cycle.back() == cycle.front()) cycle.pop_back();
+      const std::size_t m = cycle.size();
+      for (std::size_t k = 0; k < m && m > 1; ++k) {
+        const Index a = cycle[k], c = cycle[(k + 1) % m];
+        if (m == 2 && k == 1) break;  // a segment: one edge
+        if (a != c) out.edges.push_back({std::min(a, c), std::max(a, c), 0, is_ray(a) || is_ray(c)});
+      }
+      const int number = out.facets++;
+      if (m < 3) {  // collapsed to a point or a segment: kept in the closure only
+        ++out.degenerate;
+        continue;
+      }
+      const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
+      const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
+      for (std::size_t k = 1; k + 1 < m; ++k) {
+        const Index a = cycle[0], b2 = cycle[k], c = cycle[k + 1];
+        if (k >= 2 && a != b2) out.edges.push_back({std::min(a, b2), std::max(a, b2), 1, is_ray(a) || is_ray(b2)});
+        if (a == b2 || b2 == c || a == c) continue;  // a non-consecutive repeat after merging
+        out.faces.push_back({a, b2, c});
+        out.polygon.push_back(number);
+        out.p.push_back(static_cast<int>(original[s.p]));
+        out.q.push_back(static_cast<int>(original[s.q]));
+        out.conditions.push_back(s.bits);
+        out.unbounded.push_back(s.open ? 1 : 0);
+        out.angle.push_back(angle);
+        out.ratio.push_back(ratio);
+      }
     }
-    if (m < 3) {
-      ++info.degenerate_facets;
-      ++facets;
-      continue;
-    }
-    const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
-    const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
-    for (std::size_t k = 1; k + 1 < m; ++k) {
-      const Index a = cycle[0], b = cycle[k], c = cycle[k + 1];
-      if (k >= 2 && a != b) edges.push_back({std::min(a, b), std::max(a, b), 1, is_ray(a) || is_ray(b)});
-      if (a == b || b == c || a == c) continue;  // a non-consecutive repeat after merging
-      medial.faces.push_back({a, b, c});
-      polygon.push_back(facets);
-      label_p.push_back(static_cast<int>(original[s.p]));
-      label_q.push_back(static_cast<int>(original[s.q]));
-      label_conditions.push_back(s.bits);
-      label_unbounded.push_back(s.open ? 1 : 0);
-      field_angle.push_back(angle);
-      field_ratio.push_back(ratio);
-    }
-    ++facets;
+  });
+  std::vector<std::size_t> face_offset(facet_blocks.size() + 1, 0), edge_offset(facet_blocks.size() + 1, 0);
+  std::vector<int> facet_offset(facet_blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < facet_blocks.size(); ++b) {
+    face_offset[b + 1] = face_offset[b] + facet_blocks[b].faces.size();
+    edge_offset[b + 1] = edge_offset[b] + facet_blocks[b].edges.size();
+    facet_offset[b + 1] = facet_offset[b] + facet_blocks[b].facets;
+    info.degenerate_facets += static_cast<std::size_t>(facet_blocks[b].degenerate);
   }
+  const std::size_t total_faces = face_offset.back();
+  medial.faces.resize(total_faces);
+  auto& polygon = medial.face_props.labels.add("polygon", total_faces);
+  auto& label_p = medial.face_props.labels.add("p", total_faces);
+  auto& label_q = medial.face_props.labels.add("q", total_faces);
+  auto& label_conditions = medial.face_props.labels.add("conditions", total_faces);
+  auto& label_unbounded = medial.face_props.labels.add("unbounded", total_faces);
+  auto& field_angle = medial.face_props.fields.add("angle", total_faces);
+  auto& field_ratio = medial.face_props.fields.add("ratio", total_faces);
+  std::vector<EdgeRecord> edges(edge_offset.back());
+  const auto gather = [&](std::size_t b) {
+    FacetBlock& block = facet_blocks[b];
+    const auto at = static_cast<std::ptrdiff_t>(face_offset[b]);
+    std::copy(block.faces.begin(), block.faces.end(), medial.faces.begin() + at);
+    std::transform(block.polygon.begin(), block.polygon.end(), polygon.begin() + at,
+                   [&](int local) { return facet_offset[b] + local; });
+    std::copy(block.p.begin(), block.p.end(), label_p.begin() + at);
+    std::copy(block.q.begin(), block.q.end(), label_q.begin() + at);
+    std::copy(block.conditions.begin(), block.conditions.end(), label_conditions.begin() + at);
+    std::copy(block.unbounded.begin(), block.unbounded.end(), label_unbounded.begin() + at);
+    std::copy(block.angle.begin(), block.angle.end(), field_angle.begin() + at);
+    std::copy(block.ratio.begin(), block.ratio.end(), field_ratio.begin() + at);
+    std::copy(block.edges.begin(), block.edges.end(), edges.begin() + static_cast<std::ptrdiff_t>(edge_offset[b]));
+    block = FacetBlock{};
+  };
+  if (options.parallel) tbb::parallel_for(std::size_t{0}, facet_blocks.size(), gather);
+  else for (std::size_t b = 0; b < facet_blocks.size(); ++b) gather(b);
+  const int facets = facet_offset.back();
   info.facets = static_cast<std::size_t>(facets);
   // Sorted by (a, b), each edge once (a Voronoi edge bounds up to three selected facets): a
   // counting sort by a, then each (short) bucket sorted and deduplicated.

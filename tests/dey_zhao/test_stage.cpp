@@ -1,5 +1,8 @@
 // The `dey_zhao` stage as shipped: loaded from the built plugin, its declared parameters, its
 // refusals, a pipeline run that writes the medial axis with its fields, and the shipped pipeline.
+#include "loaded_stage.hpp"
+#include "pipeline_run.hpp"
+
 #include <medax/io.hpp>
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
@@ -17,24 +20,9 @@ using namespace medax;
 
 namespace {
 
-struct Loaded {
-  Registry registry;
-  const RegisteredStage* stage = nullptr;
-  Loaded() {
-    REQUIRE(registry.load_file(MEDAX_DEY_ZHAO_PLUGIN));
-    stage = registry.find("dey_zhao");
-    REQUIRE(stage);
-  }
-  std::unique_ptr<ExtractionStage> create(const std::map<std::string, ParamValue>& changes = {}) const {
-    std::unique_ptr<Stage> s = registry.create("dey_zhao");
-    auto* extraction = dynamic_cast<ExtractionStage*>(s.get());
-    REQUIRE(extraction);
-    ParamSet params = default_params(stage->info().params);
-    for (const auto& [name, value] : changes) params.set(name, value);
-    s->configure(params);
-    s.release();
-    return std::unique_ptr<ExtractionStage>(extraction);
-  }
+/// The dey_zhao stage of the built plugin.
+struct Loaded : test::LoadedStage<ExtractionStage> {
+  Loaded() : LoadedStage(MEDAX_DEY_ZHAO_PLUGIN, "dey_zhao") {}
 };
 
 }  // namespace
@@ -120,16 +108,13 @@ TEST_CASE("dey_zhao stage in a pipeline writes the medial axis of a torus", "[de
   REQUIRE(registry.load_file(MEDAX_CONDITIONING_PLUGIN));
   const auto dir = test::scratch_dir("dey_zhao_pipeline");
   write_mesh(dir / "torus.off", testing::make_torus(2.0, 0.7, 128, 48));
-  std::ofstream(dir / "pipeline.yaml") << "name: dey_zhao\nseed: 0\ninput: torus.off\n"
-                                          "stages:\n"
-                                          "  - plugin: sample\n    params: {method: poisson, count: 6000}\n"
-                                          "  - plugin: dey_zhao\n"
-                                          "outputs: {medial: [ma, ply]}\n";
-  const PipelineConfig config = load_pipeline(dir / "pipeline.yaml", registry);
-  RunOptions options;
-  options.out_dir = dir / "run";
-  options.quiet = true;
-  const RunResult result = run_pipeline(config, options);
+  const RunResult result = test::run_yaml_text(dir,
+                                               "name: dey_zhao\nseed: 0\ninput: torus.off\n"
+                                               "stages:\n"
+                                               "  - plugin: sample\n    params: {method: poisson, count: 6000}\n"
+                                               "  - plugin: dey_zhao\n"
+                                               "outputs: {medial: [ma, ply]}\n",
+                                               registry);
   INFO(result.error);
   REQUIRE(result.ok);
   const MedialComplex m = read_ma(dir / "run" / "medial.ma");

@@ -1,5 +1,6 @@
 // The `voronoi` stage as shipped: loaded from the built plugin, its declared parameters, its
 // refusals, and a pipeline run that writes the medial axis.
+#include "loaded_stage.hpp"
 #include "pipeline_run.hpp"
 
 #include <medax/io.hpp>
@@ -19,25 +20,9 @@ using namespace medax;
 
 namespace {
 
-struct Loaded {
-  Registry registry;
-  const RegisteredStage* stage = nullptr;
-  Loaded() {
-    REQUIRE(registry.load_file(MEDAX_VORONOI_PLUGIN));
-    stage = registry.find("voronoi");
-    REQUIRE(stage);
-  }
-  /// A configured instance with the defaults and `changes`.
-  std::unique_ptr<ExtractionStage> create(const std::map<std::string, ParamValue>& changes = {}) const {
-    std::unique_ptr<Stage> s = registry.create("voronoi");
-    auto* extraction = dynamic_cast<ExtractionStage*>(s.get());
-    REQUIRE(extraction);
-    ParamSet params = default_params(stage->info().params);
-    for (const auto& [name, value] : changes) params.set(name, value);
-    s->configure(params);
-    s.release();
-    return std::unique_ptr<ExtractionStage>(extraction);
-  }
+/// The voronoi stage of the built plugin.
+struct Loaded : test::LoadedStage<ExtractionStage> {
+  Loaded() : LoadedStage(MEDAX_VORONOI_PLUGIN, "voronoi") {}
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <medax/services/mesh_check.hpp>
 
 #include "cgal_mesh.hpp"
+#include "message_text.hpp"
 
 #include <CGAL/box_intersection_d.h>
 #include <Eigen/Geometry>
@@ -50,16 +51,8 @@ class UnionFind {
   std::vector<std::size_t> parent_, size_;
 };
 
-/// Concatenates its arguments with operator<< (the services library does not link fmt).
-template <typename... Args>
-std::string cat(const Args&... args) {
-  std::ostringstream s;
-  s.precision(6);
-  (s << ... << args);
-  return s.str();
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) { return cat(n, ' ', n == 1 ? one : many); }
+using detail::cat;
+using detail::plural;
 
 /// Do two non-degenerate triangles of a soup intersect outside what they share? Shared corners
 /// are recognised by index, as CGAL does for a mesh: distinct vertices at the same position do

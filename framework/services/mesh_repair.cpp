@@ -3,6 +3,7 @@
 #include <medax/services/mesh_check.hpp>
 
 #include "cgal_mesh.hpp"
+#include "message_text.hpp"
 
 #ifndef CGAL_EIGEN3_ENABLED
 #define CGAL_EIGEN3_ENABLED  // fairing needs CGAL's Eigen sparse solver; Eigen is a kernel dependency
@@ -38,15 +39,8 @@ using face_descriptor = CgalMesh::Face_index;
 using vertex_descriptor = CgalMesh::Vertex_index;
 using halfedge_descriptor = CgalMesh::Halfedge_index;
 
-template <typename... Args>
-std::string cat(const Args&... args) {
-  std::ostringstream s;
-  s.precision(6);
-  (s << ... << args);
-  return s.str();
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) { return cat(n, ' ', n == 1 ? one : many); }
+using detail::cat;
+using detail::plural;
 
 SurfaceMesh to_surface(const CgalMesh& in) {
   SurfaceMesh out;

@@ -19,27 +19,6 @@
 
 namespace medax::test {
 
-/// The good meshes (top level of ../shared/data/meshes), sorted by name.
-inline std::vector<std::filesystem::path> good_meshes() {
-  std::vector<std::filesystem::path> out;
-  for (const auto& entry : std::filesystem::directory_iterator(shared_meshes_dir())) {
-    const std::string ext = entry.path().extension().string();
-    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl"))
-      out.push_back(entry.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-/// The deliberately broken meshes in bad/.
-inline std::vector<std::filesystem::path> bad_meshes() {
-  std::vector<std::filesystem::path> out;
-  for (const auto& entry : std::filesystem::directory_iterator(shared_meshes_dir() / "bad"))
-    if (entry.is_regular_file()) out.push_back(entry.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 /// meshcheck.jsonl: the "meshcheck" object of every file, by its path relative to the folder.
 inline const std::map<std::string, nlohmann::json>& manifest_checks() {
   static const std::map<std::string, nlohmann::json> checks = [] {

@@ -16,20 +16,6 @@ using namespace medax;
 
 namespace {
 
-/// The good meshes of ../shared/data/meshes (not bad/), sorted by name.
-std::vector<std::filesystem::path> good_meshes() {
-  std::vector<std::filesystem::path> out;
-  const auto dir = test::shared_meshes_dir();
-  if (!std::filesystem::is_directory(dir)) return out;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const auto ext = entry.path().extension();
-    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl"))
-      out.push_back(entry.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 /// Uniform points in the mesh's bounding box grown by 10% on each side.
 std::vector<Vec3> points_around(const SurfaceMesh& mesh, std::size_t n, std::uint64_t seed) {
   Vec3 lo = mesh.vertices.front(), hi = lo;
@@ -46,7 +32,7 @@ std::vector<Vec3> points_around(const SurfaceMesh& mesh, std::size_t n, std::uin
 }  // namespace
 
 TEST_CASE("InsideTest agrees with the winding number on every good shared mesh", "[geometry][inside]") {
-  const auto meshes = good_meshes();
+  const auto meshes = test::good_meshes();
   if (meshes.empty()) {
     WARN("no shared meshes in " << test::shared_meshes_dir() << ": skipped");
     return;

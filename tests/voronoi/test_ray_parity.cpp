@@ -20,23 +20,10 @@ using voronoi::RayParityInside;
 
 namespace {
 
-std::vector<std::filesystem::path> good_meshes() {
-  std::vector<std::filesystem::path> out;
-  const auto dir = test::shared_meshes_dir();
-  if (!std::filesystem::is_directory(dir)) return out;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const auto ext = entry.path().extension();
-    if (entry.is_regular_file() && (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl"))
-      out.push_back(entry.path());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good shared mesh", "[voronoi][inside]") {
-  const auto meshes = good_meshes();
+  const auto meshes = test::good_meshes();
   if (meshes.empty()) {
     WARN("no shared meshes in " << test::shared_meshes_dir() << ": skipped");
     return;

@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -142,6 +143,26 @@ DelaunayTetrahedralization delaunay_tetrahedralize(const std::vector<Vec3>& poin
   out.vertex_point = std::move(vertex_point);
   out.point_vertex = std::move(point_vertex);
   return out;
+}
+
+DelaunayTetrahedralization delaunay_tetrahedralize_alongside(const std::vector<Vec3>& points,
+                                                             const DelaunayOptions& options,
+                                                             const std::function<void()>& alongside) {
+  if (!options.parallel) {
+    alongside();
+    return delaunay_tetrahedralize(points, options);
+  }
+  tbb::task_group group;
+  group.run(alongside);
+  DelaunayTetrahedralization dt;
+  try {
+    dt = delaunay_tetrahedralize(points, options);
+  } catch (...) {
+    group.wait();
+    throw;
+  }
+  group.wait();  // rethrows a failure of `alongside`
+  return dt;
 }
 
 }  // namespace medax::services

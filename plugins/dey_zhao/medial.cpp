@@ -6,7 +6,6 @@
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
@@ -450,21 +449,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
   };
 
   // A. The Delaunay tetrahedralization and its circumcentres.
-  DelaunayTetrahedralization dt;
-  if (options.parallel && prepare_mesh) {
-    tbb::task_group group;
-    group.run(setup);
-    try {
-      dt = services::delaunay_tetrahedralize(P, {options.parallel});
-    } catch (...) {
-      group.wait();
-      throw;
-    }
-    group.wait();
-  } else {
-    setup();
-    dt = services::delaunay_tetrahedralize(P, {options.parallel});
-  }
+  const DelaunayTetrahedralization dt = services::delaunay_tetrahedralize_alongside(P, {options.parallel}, setup);
   const std::size_t n = dt.cells.size();
   if (n >= kNone / 4) throw std::invalid_argument("too many Delaunay cells for 32-bit indices");
   info.points = dt.vertex_point.size();

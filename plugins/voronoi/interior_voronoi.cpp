@@ -8,7 +8,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <chrono>
@@ -95,21 +94,8 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
     if (options.inside == InsideMethod::RayGrid) ray_grid.emplace(mesh);
     else side_of_mesh.emplace(mesh);
   };
-  DelaunayTetrahedralization dt;
-  if (options.parallel) {
-    tbb::task_group setup;
-    setup.run(prepare_inside);
-    try {
-      dt = services::delaunay_tetrahedralize(points, {options.parallel});
-    } catch (...) {
-      setup.wait();
-      throw;
-    }
-    setup.wait();  // rethrows a setup failure
-  } else {
-    prepare_inside();
-    dt = services::delaunay_tetrahedralize(points, {false});
-  }
+  const DelaunayTetrahedralization dt =
+      services::delaunay_tetrahedralize_alongside(points, {options.parallel}, prepare_inside);
   const std::size_t n = dt.cells.size();
   if (n >= kNone) throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
   info.points = dt.vertex_point.size();

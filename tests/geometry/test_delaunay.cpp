@@ -179,3 +179,21 @@ TEST_CASE("Delaunay with more than 10k points (the former parallel path) is vali
   CHECK(volume <= 1.0);
   CHECK(hull_facets > 0);
 }
+
+TEST_CASE("Delaunay alongside other work: both run and failures of either propagate", "[geometry][delaunay]") {
+  const std::vector<Vec3> tetrahedron{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const bool parallel : {true, false}) {
+    bool ran = false;
+    const auto dt = services::delaunay_tetrahedralize_alongside(tetrahedron, {parallel}, [&] { ran = true; });
+    CHECK(ran);
+    CHECK(dt.cells.size() == 1);
+    CHECK_THROWS_WITH(services::delaunay_tetrahedralize_alongside(
+                          tetrahedron, {parallel}, [] { throw std::runtime_error("setup failed"); }),
+                      "setup failed");
+    const std::vector<Vec3> flat{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    bool flat_ran = false;
+    CHECK_THROWS_AS(services::delaunay_tetrahedralize_alongside(flat, {parallel}, [&] { flat_ran = true; }),
+                    std::invalid_argument);
+    CHECK(flat_ran);  // the other work was waited for before the error left
+  }
+}

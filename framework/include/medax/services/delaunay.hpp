@@ -4,6 +4,7 @@
 // per-cell work (ordering, neighbours, circumcentres) runs in parallel with TBB.
 #include <medax/geometry.hpp>
 
+#include <functional>
 #include <vector>
 
 namespace medax::services {
@@ -34,5 +35,12 @@ struct DelaunayOptions {
 /// Throws std::invalid_argument when the points span less than three dimensions.
 DelaunayTetrahedralization delaunay_tetrahedralize(const std::vector<Vec3>& points,
                                                    const DelaunayOptions& options = {});
+
+/// The same, while `alongside` (work that does not need the result, e.g. building an inside
+/// test) runs on another core when `options.parallel`; otherwise `alongside` runs first. An
+/// exception from either is rethrown once both have finished.
+DelaunayTetrahedralization delaunay_tetrahedralize_alongside(const std::vector<Vec3>& points,
+                                                             const DelaunayOptions& options,
+                                                             const std::function<void()>& alongside);
 
 }  // namespace medax::services

@@ -2,6 +2,7 @@
 
 #include "inner.hpp"
 
+#include <medax/services/blocks.hpp>
 #include <medax/services/delaunay_rings.hpp>
 
 #include <tbb/parallel_for.h>
@@ -37,14 +38,6 @@ constexpr Index kNone = ~Index{0};
 constexpr std::size_t kBlock = 4096;  // cells per parallel work unit (fixed: output independent of the schedule)
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-template <typename Body>
-void for_blocks(std::size_t n, bool parallel, const Body& body) {
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  const auto run = [&](std::size_t b) { body(b, b * kBlock, std::min(n, (b + 1) * kBlock)); };
-  if (parallel) tbb::parallel_for(std::size_t{0}, blocks, run);
-  else for (std::size_t b = 0; b < blocks; ++b) run(b);
-}
 
 /// The three corners of facet k of a cell, in increasing position order.
 inline std::array<Index, 3> facet_corners(const std::array<Index, 4>& corner, int k) {
@@ -171,7 +164,7 @@ Umbrellas compute_umbrellas(const std::vector<Vec3>& P, const DelaunayTetrahedra
   auto max_r = std::make_unique<std::atomic<std::uint64_t>[]>(np);
   std::vector<std::uint16_t> mask(n, 0);  // bit 3k + m: facet k is in the umbrella of its m-th corner
   const auto& v = u.pole_vector;
-  for_blocks(n, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  services::for_blocks(n, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const auto& corner = dt.cells[c];
       std::uint16_t bits = 0;
@@ -209,7 +202,7 @@ Umbrellas compute_umbrellas(const std::vector<Vec3>& P, const DelaunayTetrahedra
   u.normals.resize(u.offsets[np]);
   if (keep_triangles) u.triangles.resize(u.offsets[np]);
   for (std::size_t x = 0; x < np; ++x) count[x].store(0, std::memory_order_relaxed);  // reused as cursors
-  for_blocks(n, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  services::for_blocks(n, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       if (!mask[c]) continue;
       const auto& corner = dt.cells[c];
@@ -472,8 +465,8 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
 
   // D–E. The conditions on every edge, from the lowest cell of its ring; rings of the selected.
   t0 = Clock::now();
-  std::vector<SelectionBlock> blocks((n + kBlock - 1) / kBlock);
-  for_blocks(n, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+  std::vector<SelectionBlock> blocks(services::block_count(n, kBlock));
+  services::for_blocks(n, kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
     select_block(P, original, dt, u, options, begin, end, blocks[b]);
   });
   std::vector<Selected> selected;
@@ -640,7 +633,7 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
   medial.centres.resize(vertices);
   medial.radii.resize(vertices);
   medial.generators.resize(vertices);
-  for_blocks(n, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  services::for_blocks(n, kBlock, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const Index v = cell_vertex[c];
       if (v == kNone) continue;
@@ -687,8 +680,8 @@ MedialComplex medial_axis(const MedialInput& input, const MedialOptions& options
   std::vector<std::uint32_t> kept_facets;
   for (std::size_t i = 0; i < selected.size(); ++i)
     if (keep[i]) kept_facets.push_back(static_cast<std::uint32_t>(i));
-  std::vector<FacetBlock> facet_blocks((kept_facets.size() + kBlock - 1) / kBlock);
-  for_blocks(kept_facets.size(), options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+  std::vector<FacetBlock> facet_blocks(services::block_count(kept_facets.size(), kBlock));
+  services::for_blocks(kept_facets.size(), kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
     FacetBlock& out = facet_blocks[b];
     std::vector<Index> cycle;
     const auto is_ray = [&](Index x) { return x >= first_ray_vertex; };

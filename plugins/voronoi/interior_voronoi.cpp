@@ -3,11 +3,10 @@
 #include "ray_parity.hpp"
 
 #include <medax/services/delaunay.hpp>
+#include <medax/services/blocks.hpp>
 #include <medax/services/delaunay_rings.hpp>
 #include <medax/services/inside.hpp>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -72,14 +71,6 @@ void faces_of_block(const std::vector<Node>& nodes, Index begin, Index end, Face
   }
 }
 
-template <typename Body>
-void for_blocks(std::size_t n, bool parallel, const Body& body) {
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  const auto run = [&](std::size_t b) { body(b, b * kBlock, std::min(n, (b + 1) * kBlock)); };
-  if (parallel) tbb::parallel_for(std::size_t{0}, blocks, run);
-  else for (std::size_t b = 0; b < blocks; ++b) run(b);
-}
-
 }  // namespace
 
 MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
@@ -122,7 +113,7 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
   medial.radii.resize(count);
   medial.generators.resize(count);
   medial.generator_kind = options.generator_kind;
-  for_blocks(n, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  services::for_blocks(n, kBlock, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const Index i = id[c];
       if (i == kNone) continue;
@@ -154,8 +145,8 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
 
   // 5. Voronoi faces, fan-triangulated; their diagonals join the edges.
   if (options.connectivity == Connectivity::Faces) {
-    std::vector<FaceBlock> blocks((count + kBlock - 1) / kBlock);
-    for_blocks(count, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::vector<FaceBlock> blocks(services::block_count(count, kBlock));
+    services::for_blocks(count, kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
       faces_of_block(nodes, static_cast<Index>(begin), static_cast<Index>(end), blocks[b]);
     });
     std::size_t faces = 0, diagonals = 0;

@@ -60,6 +60,90 @@ __attribute__((noinline)) void candidates(double px, double py, double pz, doubl
   }
 }
 
+/// The spheres packed for the kernels above, with the pruning margin.
+class Searcher {
+ public:
+  Searcher(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda) : in_(in), lambda_(lambda) {
+    terms_.set(spheres);
+    for (int i = 0; i < 14; ++i) columns_[i] = terms_.m[i].data();
+  }
+  std::size_t count() const { return terms_.size(); }
+
+  /// E_v of sphere j.
+  double energy(Index v, std::size_t j) const {
+    const Vec3& p = in_.points[v];
+    return energy_at(in_.quadrics[v], p.x(), p.y(), p.z(), weight(v), columns_, j);
+  }
+
+  /// The argmin over every sphere, lowest index on ties. `guess` only prunes: spheres that
+  /// provably cannot beat it are not evaluated.
+  std::size_t best_of_all(Index v, std::size_t guess, std::vector<double>& scratch) const {
+    const std::size_t count = this->count();
+    const double w = weight(v);
+    const Vec3& p = in_.points[v];
+    scratch.resize(count);
+    std::size_t best = 0;
+    if (w > 0 && count > 8) {
+      // Exact pruning: bound the minimum by the guess's energy, then evaluate only the spheres
+      // that could beat it.
+      const double e_guess = energy(v, guess);
+      candidates(p.x(), p.y(), p.z(), reach(v, e_guess), columns_[10], columns_[11], columns_[12], columns_[13],
+                 count, scratch.data());
+      double best_e = std::numeric_limits<double>::infinity();
+      for (std::size_t j = 0; j < count; ++j) {
+        if (!(scratch[j] >= 0)) continue;
+        const double ej = energy(v, j);
+        if (ej < best_e) best_e = ej, best = j;
+      }
+      return std::isfinite(best_e) ? best : guess;
+    }
+    energies(in_.quadrics[v], p.x(), p.y(), p.z(), w, columns_, count, scratch.data());
+    double best_e = scratch[0];
+    for (std::size_t j = 1; j < count; ++j)
+      if (scratch[j] < best_e) best_e = scratch[j], best = j;
+    return best;
+  }
+
+  /// The argmin over {current} ∪ `subset` (ascending indices), lowest index on ties; the
+  /// spheres of `subset` are packed in `packed`, in the same order.
+  std::size_t best_of_subset(Index v, std::size_t current, const std::vector<std::size_t>& subset,
+                             const Searcher& packed, std::vector<double>& scratch) const {
+    const double e_current = energy(v, current);
+    if (subset.empty()) return current;
+    const double w = weight(v);
+    const Vec3& p = in_.points[v];
+    scratch.resize(subset.size());
+    if (w > 0)
+      candidates(p.x(), p.y(), p.z(), reach(v, e_current), packed.columns_[10], packed.columns_[11],
+                 packed.columns_[12], packed.columns_[13], subset.size(), scratch.data());
+    else
+      std::fill(scratch.begin(), scratch.end(), 0.0);
+    std::size_t best = current;
+    double best_e = e_current;
+    for (std::size_t k = 0; k < subset.size(); ++k) {
+      if (!(scratch[k] >= 0)) continue;
+      const double ek = packed.energy(v, k);  // the same operations on the same numbers as energy(v, subset[k])
+      if (ek < best_e || (ek == best_e && subset[k] < best)) best_e = ek, best = subset[k];
+    }
+    return best;
+  }
+
+ private:
+  double weight(Index v) const { return lambda_ * in_.areas[v]; }
+  /// How far |v − q| − r may be from 0 for a sphere to beat energy e: √(e / w), with a margin
+  /// above the round-off of Q_v (per unit area).
+  double reach(Index v, double e) const {
+    const double margin = 1e-12 * in_.scale * in_.scale;
+    const double bound = e * (1 + 1e-9) + in_.areas[v] * margin;
+    return std::sqrt(std::max(bound, 0.0) / weight(v));
+  }
+
+  const VmasInput& in_;
+  double lambda_;
+  SphereTerms terms_;
+  const double* columns_[14];
+};
+
 }  // namespace
 
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
@@ -70,47 +154,44 @@ void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, do
     cluster_of = std::move(result);
     return;
   }
-  SphereTerms terms;
-  terms.set(spheres);
-  const double* columns[14];
-  for (int i = 0; i < 14; ++i) columns[i] = terms.m[i].data();
-  const double margin = 1e-12 * in.scale * in.scale;  // above the round-off of Q_v (per unit area)
+  const Searcher all(in, spheres, lambda);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<double> e(count);
-    std::vector<double> keep(count);
+    std::vector<double> scratch;
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
       if (!in.active(static_cast<Index>(v))) continue;
-      const Vec3& p = in.points[v];
-      const PackedQuadric& Q = in.quadrics[v];
-      const double w = lambda * in.areas[v];
-      std::size_t best = 0;
-      if (w > 0 && count > 8) {
-        // Exact pruning: bound the minimum by the energy of a good guess (the previous cluster),
-        // with a margin above round-off, then evaluate only the spheres that could beat it. The
-        // result is the brute-force argmin, lowest index on ties.
-        std::size_t guess = 0;
-        if (hint && v < hint->size() && (*hint)[v] >= 0 && static_cast<std::size_t>((*hint)[v]) < count)
-          guess = static_cast<std::size_t>((*hint)[v]);
-        const double bound = energy_at(Q, p.x(), p.y(), p.z(), w, columns, guess) * (1 + 1e-9) + in.areas[v] * margin;
-        const double delta = std::sqrt(std::max(bound, 0.0) / w);
-        candidates(p.x(), p.y(), p.z(), delta, columns[10], columns[11], columns[12], columns[13], count, keep.data());
-        double best_e = std::numeric_limits<double>::infinity();
-        for (std::size_t j = 0; j < count; ++j) {
-          if (!(keep[j] >= 0)) continue;
-          const double ej = energy_at(Q, p.x(), p.y(), p.z(), w, columns, j);
-          if (ej < best_e) best_e = ej, best = j;
-        }
-        if (!std::isfinite(best_e)) best = guess;
-      } else {
-        energies(Q, p.x(), p.y(), p.z(), w, columns, count, e.data());
-        double best_e = e[0];
-        for (std::size_t j = 1; j < count; ++j)
-          if (e[j] < best_e) best_e = e[j], best = j;
-      }
-      result[v] = static_cast<int>(best);
+      std::size_t guess = 0;
+      if (hint && v < hint->size() && (*hint)[v] >= 0 && static_cast<std::size_t>((*hint)[v]) < count)
+        guess = static_cast<std::size_t>((*hint)[v]);
+      result[v] = static_cast<int>(all.best_of_all(static_cast<Index>(v), guess, scratch));
     }
   });
   cluster_of = std::move(result);
+}
+
+void reassign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
+                       const std::vector<char>& moved, std::vector<int>& cluster_of) {
+  const std::size_t n = in.size(), count = spheres.size();
+  if (count == 0 || cluster_of.size() != n || moved.size() != count) {
+    assign_vertices(in, spheres, lambda, cluster_of, cluster_of.size() == n ? &cluster_of : nullptr);
+    return;
+  }
+  std::vector<std::size_t> subset;
+  std::vector<Sphere> subset_spheres;
+  for (std::size_t j = 0; j < count; ++j)
+    if (moved[j]) subset.push_back(j), subset_spheres.push_back(spheres[j]);
+  const Searcher all(in, spheres, lambda), packed(in, subset_spheres, lambda);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<double> scratch;
+    for (std::size_t v = range.begin(); v != range.end(); ++v) {
+      if (!in.active(static_cast<Index>(v))) continue;
+      const int c = cluster_of[v];
+      const bool kept = c >= 0 && static_cast<std::size_t>(c) < count && !moved[static_cast<std::size_t>(c)];
+      // A vertex whose sphere did not move was at the argmin: only a moved sphere can beat it.
+      const std::size_t best = kept ? all.best_of_subset(static_cast<Index>(v), static_cast<std::size_t>(c), subset, packed, scratch)
+                                    : all.best_of_all(static_cast<Index>(v), c >= 0 && static_cast<std::size_t>(c) < count ? static_cast<std::size_t>(c) : 0, scratch);
+      cluster_of[v] = static_cast<int>(best);
+    }
+  });
 }
 
 Clusters group_clusters(const std::vector<int>& cluster_of, std::size_t sphere_count) {

@@ -2,6 +2,8 @@
 // Shape partitioning (notes §2.3, eq. 8): every active vertex goes to the sphere of least
 // E_v(m_j), lowest index on ties. Brute force over the spheres, parallel over the vertices:
 // each vertex's choice is independent, so the result does not depend on the thread count.
+// Exact pruning (a bound from the Euclidean term) and the incremental update after local
+// changes both give the brute-force result.
 #include "energy.hpp"
 
 #include <vector>
@@ -14,6 +16,14 @@ namespace medax::vmas {
 /// is the same with any hint or none. `cluster_of` may be `hint` itself.
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
                      std::vector<int>& cluster_of, const std::vector<int>* hint = nullptr);
+
+/// The same partition as assign_vertices, updated instead of recomputed. `cluster_of` must be
+/// the exact partition against `spheres` except those flagged in `moved` (changed or added since;
+/// entries −1 or out of range are searched afresh). A vertex whose sphere did not move was at the
+/// argmin among the unmoved spheres, so only the moved ones are tested against it: after a local
+/// change the cost is O(N·|moved|) cheap bound tests instead of a search over all spheres.
+void reassign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
+                       const std::vector<char>& moved, std::vector<int>& cluster_of);
 
 /// The clusters as lists: members of sphere i are members[offsets[i] .. offsets[i+1]), ascending.
 struct Clusters {

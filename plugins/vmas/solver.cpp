@@ -47,28 +47,45 @@ VmasSolver::VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions optio
 SphereId VmasSolver::push(const Sphere& s) {
   spheres_.push_back(s);
   ids_.push_back(next_id_);
+  moved_.push_back(1);
+  regrouped_.push_back(1);
+  settled_.push_back(0);
   return next_id_++;
 }
 
+void VmasSolver::set_sphere(std::size_t i, const Sphere& s) {
+  const Sphere& old = spheres_[i];
+  if (s.centre != old.centre || s.radius != old.radius) moved_[i] = 1;
+  spheres_[i] = s;
+}
+
+void VmasSolver::erase_sphere(std::size_t i) {
+  const auto at = [i](auto& v) { v.erase(v.begin() + static_cast<std::ptrdiff_t>(i)); };
+  at(spheres_), at(ids_), at(moved_), at(regrouped_), at(settled_);
+  const int gone = static_cast<int>(i);
+  for (int& c : cluster_of_)
+    if (c == gone) c = -1;  // searched afresh at the next partition
+    else if (c > gone) --c;
+}
+
 std::size_t VmasSolver::partition() {
-  assign_vertices(*input_, spheres_, options_.lambda_partition, cluster_of_, &cluster_of_);
+  const std::vector<int> before = cluster_of_;
+  reassign_vertices(*input_, spheres_, options_.lambda_partition, moved_, cluster_of_);
+  std::fill(moved_.begin(), moved_.end(), 0);
+  for (std::size_t v = 0; v < cluster_of_.size(); ++v)
+    if (before[v] != cluster_of_[v]) {
+      if (before[v] >= 0) regrouped_[static_cast<std::size_t>(before[v])] = 1;
+      if (cluster_of_[v] >= 0) regrouped_[static_cast<std::size_t>(cluster_of_[v])] = 1;
+    }
   clusters_ = group_clusters(cluster_of_, spheres_.size());
   // Spheres with a too-small cluster are deleted; their vertices stay unassigned for this
   // iteration (the authors' code; notes §2.3). Never delete them all.
-  std::vector<int> remap(spheres_.size(), -1);
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < spheres_.size(); ++i)
-    if (clusters_.size(i) >= options_.min_cluster_size) remap[i] = static_cast<int>(kept++);
-  if (kept == spheres_.size() || kept == 0) return 0;
-  std::vector<Sphere> spheres;
-  std::vector<SphereId> ids;
-  for (std::size_t i = 0; i < spheres_.size(); ++i)
-    if (remap[i] >= 0) spheres.push_back(spheres_[i]), ids.push_back(ids_[i]);
-  const std::size_t culled = spheres_.size() - kept;
-  spheres_ = std::move(spheres);
-  ids_ = std::move(ids);
-  for (int& c : cluster_of_)
-    if (c >= 0) c = remap[static_cast<std::size_t>(c)];
+  const auto small = [&](std::size_t i) { return clusters_.size(i) < options_.min_cluster_size; };
+  std::size_t culled = 0;
+  for (std::size_t i = 0; i < spheres_.size(); ++i) culled += small(i);
+  if (culled == 0 || culled == spheres_.size()) return 0;
+  for (std::size_t i = spheres_.size(); i-- > 0;)  // from the back: clusters_ stays indexed as before
+    if (small(i)) erase_sphere(i);
   clusters_ = group_clusters(cluster_of_, spheres_.size());
   return culled;
 }
@@ -79,6 +96,48 @@ void VmasSolver::compute_stats() {
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     stats_[i] = cluster_stats(*input_, clusters_.begin(i), clusters_.size(i), spheres_[i], options_.lambda_partition);
   });
+}
+
+void VmasSolver::correct_all() {
+  std::vector<Sphere> corrected(spheres_.size());
+  tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { corrected[i] = input_->correct(spheres_[i]); });
+  for (std::size_t i = 0; i < spheres_.size(); ++i) set_sphere(i, corrected[i]);
+}
+
+void VmasSolver::update_spheres() {
+  const VmasInput& in = *input_;
+  UpdateOptions uo;
+  uo.lambda = options_.lambda_update;
+  uo.rows = options_.sqem_rows;
+  uo.max_iterations = options_.gn_max_iterations;
+  uo.tolerance = options_.gn_tolerance * in.scale;
+  // The update of a sphere is a function of its cluster and its start. In the local scope a
+  // sphere whose cluster is unchanged and whose last solve converged would only repeat that
+  // solve (and its correction), so it keeps its exact value; a split or an edit then costs
+  // updates only where clusters change, spreading as far as they keep changing.
+  const bool full = options_.update_scope == UpdateScope::Full;
+  std::vector<Sphere> updated(spheres_.size());
+  std::vector<char> due(spheres_.size(), 0);
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    due[i] = clusters_.size(i) > 0 && (full || regrouped_[i] || !settled_[i]);
+  {
+    Timer t(times_.update);
+    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
+      if (!due[i]) return;
+      const UpdateResult r = update_sphere(in, clusters_.begin(i), clusters_.size(i), spheres_[i], uo);
+      updated[i] = r.sphere;
+      settled_[i] = r.converged;
+      regrouped_[i] = 0;
+    });
+  }
+  if (options_.correction == Correction::Always) {
+    Timer t(times_.correction);
+    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
+      if (due[i]) updated[i] = in.correct(updated[i]);
+    });
+  }
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    if (due[i]) set_sphere(i, updated[i]);
 }
 
 IterationReport VmasSolver::step(bool allow_split) {
@@ -96,23 +155,7 @@ IterationReport VmasSolver::step(bool allow_split) {
     for (const ClusterStats& st : stats_) rep.energy_partition += st.energy;
   }
 
-  UpdateOptions uo;
-  uo.lambda = options_.lambda_update;
-  uo.rows = options_.sqem_rows;
-  uo.max_iterations = options_.gn_max_iterations;
-  uo.tolerance = options_.gn_tolerance * in.scale;
-  {
-    Timer t(times_.update);
-    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
-      if (clusters_.size(i) > 0) spheres_[i] = update_sphere(in, clusters_.begin(i), clusters_.size(i), spheres_[i], uo).sphere;
-    });
-  }
-  if (options_.correction == Correction::Always) {
-    Timer t(times_.correction);
-    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) {
-      if (clusters_.size(i) > 0) spheres_[i] = in.correct(spheres_[i]);
-    });
-  }
+  update_spheres();
   {
     Timer t(times_.errors);
     compute_stats();
@@ -136,7 +179,7 @@ IterationReport VmasSolver::step(bool allow_split) {
   if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
     Timer t(times_.splits);
     if (options_.correction == Correction::OnSplit) {
-      tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { spheres_[i] = in.correct(spheres_[i]); });
+      correct_all();
       compute_stats();
     }
     SplitRound round;
@@ -174,10 +217,7 @@ IterationReport VmasSolver::run(const std::function<bool(const IterationReport&)
 }
 
 void VmasSolver::finish() {
-  if (options_.correction == Correction::End || options_.correction == Correction::OnSplit) {
-    const VmasInput& in = *input_;
-    tbb::parallel_for(std::size_t{0}, spheres_.size(), [&](std::size_t i) { spheres_[i] = in.correct(spheres_[i]); });
-  }
+  if (options_.correction == Correction::End || options_.correction == Correction::OnSplit) correct_all();
   if (clusters_.count() != spheres_.size()) partition();
   compute_stats();
 }
@@ -226,8 +266,7 @@ SphereId VmasSolver::add_sphere(Index vertex) {
 void VmasSolver::remove_sphere(SphereId id) {
   const std::size_t i = index_of(id);
   if (spheres_.size() == 1) throw std::invalid_argument("vmas: cannot remove the last sphere");
-  spheres_.erase(spheres_.begin() + static_cast<std::ptrdiff_t>(i));
-  ids_.erase(ids_.begin() + static_cast<std::ptrdiff_t>(i));
+  erase_sphere(i);
   refresh_after_edit();
 }
 

@@ -48,6 +48,9 @@ StageInfo VmasStage::describe() {
                      "authors' code (one summed SQEM row per vertex, Euclidean weight λ²)"),
            P::choice("correction", "always", {"always", "on_split", "end", "off"},
                      "When spheres are projected back onto the medial axis by a shrinking ball"),
+           P::choice("update_scope", "local", {"local", "full"},
+                     "Spheres updated per iteration: those whose cluster changed (plus new and unconverged "
+                     "ones; the others keep their exact values), or every sphere"),
            P::real("converge_eps", 1e-5, "Converged when the total error changes by less than this")
                .at_least(0)
                .in_unit("scale²"),
@@ -99,6 +102,7 @@ VmasOptions VmasStage::solver_options(const ParamSet& p) {
                  : c == "on_split" ? Correction::OnSplit
                  : c == "end" ? Correction::End
                               : Correction::Off;
+  o.update_scope = p.text("update_scope") == "local" ? UpdateScope::Local : UpdateScope::Full;
   o.max_iterations = static_cast<int>(p.integer("max_iterations"));
   o.stall_iterations = static_cast<int>(p.integer("stall_iterations"));
   return o;

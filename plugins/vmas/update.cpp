@@ -100,12 +100,18 @@ UpdateResult update_sphere(const VmasInput& in, const Index* members, std::size_
       }
     }
     if (accepted) {
-      if (delta.norm() < options.tolerance) break;
+      if (delta.norm() < options.tolerance) {
+        result.converged = true;
+        break;
+      }
       continue;
     }
     // Rejected: damp (Levenberg) and retry from the same point; give up when the step vanishes.
     mu = mu > 0 ? mu * 10 : 1e-4;
-    if (mu > 1e8 || (delta.allFinite() && delta.norm() < options.tolerance)) break;
+    if (mu > 1e8 || (delta.allFinite() && delta.norm() < options.tolerance)) {
+      result.converged = true;
+      break;
+    }
   }
   result.sphere = Sphere::from(s);
   result.energy_after = cur.energy;

@@ -29,6 +29,7 @@ struct UpdateResult {
   Sphere sphere;
   double energy_before = 0, energy_after = 0;  ///< of the minimised objective
   int iterations = 0;
+  bool converged = false;  ///< stopped before max_iterations (a short step, or no descent left)
 };
 
 /// Minimises the update energy of the cluster `members` (ascending) from `start`.

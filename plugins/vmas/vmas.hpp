@@ -41,6 +41,13 @@ enum class Correction {
   Off,      ///< never
 };
 
+/// Which spheres an iteration updates (Gauss–Newton + correction).
+enum class UpdateScope {
+  Local,  ///< those whose cluster changed at this partition, new ones, and those whose last
+          ///< Gauss–Newton solve hit the iteration cap; the others keep their exact values
+  Full,   ///< every sphere, every iteration
+};
+
 struct VmasOptions {
   double lambda_partition = 0.2;  ///< λ in eq. 8 (partition and cluster errors)
   double lambda_update = 0.2;     ///< λ in eq. 11 (the update)
@@ -56,6 +63,7 @@ struct VmasOptions {
   int gn_max_iterations = 10;
   double gn_tolerance = 1e-6;        ///< × scale
   Correction correction = Correction::Always;
+  UpdateScope update_scope = UpdateScope::Local;
   int max_iterations = 1000;
   /// Stop when for this many iterations the sphere count has not grown past its maximum and
   /// E_tot has not reached a new minimum (a target the tessellation cannot hold, or spheres
@@ -146,6 +154,11 @@ class VmasSolver {
   IterationReport step(bool allow_split);
   std::size_t partition();  ///< assign + cull; returns the number culled
   void compute_stats();
+  void update_spheres();  ///< Gauss–Newton (+ correction) of the spheres due, by update_scope
+  void correct_all();
+  /// Replaces sphere i, noting whether it moved (the next partition tests only moved spheres).
+  void set_sphere(std::size_t i, const Sphere& s);
+  void erase_sphere(std::size_t i);
   void refresh_after_edit();
   std::size_t index_of(SphereId id) const;
   SphereId push(const Sphere& s);
@@ -155,7 +168,11 @@ class VmasSolver {
   std::vector<Sphere> spheres_;  ///< local frame
   std::vector<SphereId> ids_;
   SphereId next_id_ = 0;
-  std::vector<int> cluster_of_;
+  // Per sphere, same order as spheres_:
+  std::vector<char> moved_;      ///< changed (or added) since the last partition
+  std::vector<char> regrouped_;  ///< its cluster gained or lost a vertex since its last update
+  std::vector<char> settled_;    ///< its last update converged (local scope: no need to repeat it)
+  std::vector<int> cluster_of_;  ///< exact argmin partition against the spheres not flagged in moved_
   Clusters clusters_;                 ///< for the first clusters_.count() spheres
   std::vector<ClusterStats> stats_;   ///< same
   int iteration_ = 0;

@@ -276,6 +276,92 @@ TEST_CASE("vmas partition is the argmin of eq 8 and clusters have at least 4 ver
   CHECK(hinted == cluster_of);
 }
 
+TEST_CASE("vmas incremental partition equals the full argmin") {
+  const SurfaceMesh mesh = make_blob();
+  VmasSolver solver(VmasInput::from_mesh(mesh), count_options(20));
+  solver.run();
+  const VmasInput& in = solver.input();
+  std::vector<Sphere> spheres = local_spheres(solver);
+  std::vector<int> before;
+  assign_vertices(in, spheres, 0.2, before);
+  // Move a few spheres (one of them onto another's exact values: a tie), add one, then update.
+  std::vector<char> moved(spheres.size(), 0);
+  for (const std::size_t j : {std::size_t{2}, std::size_t{7}, std::size_t{11}}) {
+    spheres[j].centre += Vec3(0.03, -0.02, 0.01) * static_cast<double>(j % 3 + 1);
+    spheres[j].radius *= 1.05;
+    moved[j] = 1;
+  }
+  spheres[15] = spheres[4], moved[15] = 1;
+  spheres.push_back(in.vertex_balls[in.nearest_vertex(Vec3(0.5, 0.2, 0.1))]), moved.push_back(1);
+  std::vector<int> incremental = before, full;
+  reassign_vertices(in, spheres, 0.2, moved, incremental);
+  assign_vertices(in, spheres, 0.2, full);
+  CHECK(incremental == full);
+  CHECK(incremental != before);
+  // Nothing moved: nothing changes.
+  std::vector<int> same = full;
+  reassign_vertices(in, spheres, 0.2, std::vector<char>(spheres.size(), 0), same);
+  CHECK(same == full);
+}
+
+TEST_CASE("vmas local update keeps the partition at the argmin through splits, edits and relaxation") {
+  const SurfaceMesh mesh = make_blob();
+  VmasSolver solver(VmasInput::from_mesh(mesh), count_options(24));
+  REQUIRE(solver.options().update_scope == UpdateScope::Local);
+  // After an edit the spheres and the partition belong together (nothing was updated since),
+  // so the solver's incremental partition must be the brute-force argmin of eq. 8.
+  const auto check_argmin = [&] {
+    const VmasInput& in = solver.input();
+    const std::vector<Sphere> spheres = local_spheres(solver);
+    std::size_t wrong = 0;
+    for (Index v = 0; v < in.size(); ++v) {
+      const int c = solver.assignment()[v];
+      if (c < 0) continue;
+      const double chosen = vertex_energy(in, v, spheres[static_cast<std::size_t>(c)], 0.2);
+      for (std::size_t j = 0; j < spheres.size(); ++j) {
+        const double e = vertex_energy(in, v, spheres[j], 0.2);
+        if (e < chosen || (e == chosen && j < static_cast<std::size_t>(c))) ++wrong;
+      }
+    }
+    std::vector<int> full;
+    assign_vertices(in, spheres, 0.2, full);
+    CHECK(wrong == 0);
+    CHECK(full == solver.assignment());
+  };
+  for (int i = 0; i < 12; ++i) solver.iterate();
+  solver.split_sphere(solver.nearest_sphere(Vec3(1, 0, 0)));
+  check_argmin();
+  solver.run();
+  solver.split_sphere(solver.nearest_sphere(Vec3(0, 1, 0)));
+  check_argmin();
+  for (int i = 0; i < 5; ++i) solver.relax();
+  solver.remove_sphere(solver.nearest_sphere(Vec3(0, 0, 1)));
+  check_argmin();
+  for (int i = 0; i < 5; ++i) solver.relax();
+  solver.add_sphere(solver.input().nearest_vertex(Vec3(-1, 0, 0) - solver.input().origin));
+  check_argmin();
+}
+
+TEST_CASE("vmas local and full updates reach the same optimum") {
+  // The local scope only skips updates that would repeat a converged solve on an unchanged
+  // cluster: same count, and the same energy up to the drift of a converged state.
+  const SurfaceMesh mesh = make_blob();
+  VmasOptions full = count_options(30), local = full;
+  full.update_scope = UpdateScope::Full;
+  const VmasSolver a = solve(mesh, local), b = solve(mesh, full);
+  CHECK(a.size() == b.size());
+  CHECK(a.last_report().total_error == Approx(b.last_report().total_error).epsilon(0.05));
+  // A settled sphere is not touched again: relaxing a converged local state moves at most the
+  // spheres whose clusters still change, and never changes the count.
+  VmasSolver c = a;
+  const std::vector<SphereInfo> before = c.spheres();
+  for (int i = 0; i < 5; ++i) c.relax();
+  CHECK(c.size() == a.size());
+  std::size_t unchanged = 0;
+  for (const SphereInfo& s : before) unchanged += c.sphere(s.id).centre == s.centre;
+  CHECK(unchanged > 0);
+}
+
 TEST_CASE("vmas dual: connected input gives a connected skeleton whose edges are the touching clusters") {
   const SurfaceMesh mesh = make_blob();
   const VmasSolver solver = solve(mesh, count_options(25));
@@ -426,10 +512,13 @@ TEST_CASE("vmas gives identical results across thread counts") {
 
 TEST_CASE("vmas edits: split and remove change the count by one and the skeleton only locally") {
   // A long capsule: the far end is a chain of clusters away from the edit. Locality is measured
-  // against the same solver continuing without the edit (a converged state still drifts a little).
+  // against the same solver continuing without the edit (a converged state still drifts a little),
+  // with both update scopes: beyond 1.5 (≈ 4 spheres along the axis) nothing moves.
   const double half = 2.0;
   const SurfaceMesh mesh = testing::make_capsule(0.2, half, 24);
-  VmasSolver solver = solve(mesh, count_options(14));
+  VmasOptions options = count_options(14);
+  options.update_scope = GENERATE(UpdateScope::Local, UpdateScope::Full);
+  VmasSolver solver = solve(mesh, options);
   REQUIRE(solver.size() == 14);
   VmasSolver control = solver;
   const auto relax_both = [&](int n) {
@@ -458,7 +547,7 @@ TEST_CASE("vmas edits: split and remove change the count by one and the skeleton
     relax_both(10);
     CHECK(solver.size() == 15);
     CHECK(solver.contains(added));
-    const auto [far, any] = changes(at, 1.0);
+    const auto [far, any] = changes(at, 1.5);
     CHECK(any > 1e-3);    // the neighbourhood made room for the new sphere ...
     CHECK(far < 1e-9);    // ... and nothing beyond it changed
     // Continuing with the automatic schedule keeps the count (the target is met).
@@ -473,7 +562,7 @@ TEST_CASE("vmas edits: split and remove change the count by one and the skeleton
     CHECK_FALSE(solver.contains(target));
     relax_both(10);
     CHECK(solver.size() == 13);
-    const auto [far, any] = changes(at, 1.0);
+    const auto [far, any] = changes(at, 1.5);
     CHECK(any > 1e-3);
     CHECK(far < 1e-9);
     // The skeleton is still a path.

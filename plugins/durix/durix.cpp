@@ -4,7 +4,7 @@
 #include "engine.hpp"
 #include "output.hpp"
 
-#include <medax/services/inside.hpp>
+#include <medax/services/ray_parity.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +14,23 @@ namespace medax::durix {
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Solid cells with a medial face (a volumetric edge), largest ball first.
+std::vector<CellId> seed_candidates_by_radius(const Dual& dual) {
+  std::vector<CellId> order;
+  for (CellId c = 0; c < dual.num_cells(); ++c) {
+    if (!dual.solid(c)) continue;
+    for (int p = 0; p < 6; ++p)
+      if (dual.volumetric(dual.cell_edge(c, p))) {
+        order.push_back(c);
+        break;
+      }
+  }
+  std::sort(order.begin(), order.end(), [&](CellId a, CellId b) {
+    return dual.radius(a) != dual.radius(b) ? dual.radius(a) > dual.radius(b) : a < b;
+  });
+  return order;
 }
 }  // namespace
 
@@ -34,30 +51,26 @@ DurixResult durix_medial_axis(const SurfaceMesh& mesh, const RegionOracle& oracl
 
   t0 = std::chrono::steady_clock::now();
   Engine engine(dual, oracle, options, r, check_cancelled);
+  // Which balls are centred inside the input (exact ray parity, in parallel): for the seeds
+  // and for the Appendix A removal of outside-centre cells.
+  {
+    std::vector<Vec3> centres;
+    std::vector<CellId> solid_cells;
+    for (CellId c = 0; c < dual.num_cells(); ++c)
+      if (dual.solid(c)) {
+        solid_cells.push_back(c);
+        centres.push_back(dual.centre(c));
+      }
+    const std::vector<char> inside = services::RayParityInside(mesh).inside(centres);
+    engine.centre_inside.assign(dual.num_cells(), 1);
+    for (std::size_t i = 0; i < solid_cells.size(); ++i) engine.centre_inside[solid_cells[i]] = inside[i];
+  }
   // Seeds (notes §3.2, made deterministic): per component, the largest ball with a medial face
   // whose centre is inside the input surface (flat cells at the surface have huge balls whose
   // centres lie outside: Appendix A).
-  {
-    std::vector<CellId> order;
-    for (CellId c = 0; c < dual.num_cells(); ++c) {
-      if (!dual.solid(c)) continue;
-      for (int p = 0; p < 6; ++p)
-        if (dual.volumetric(dual.cell_edge(c, p))) {
-          order.push_back(c);
-          break;
-        }
-    }
-    std::sort(order.begin(), order.end(), [&](CellId a, CellId b) {
-      return dual.radius(a) != dual.radius(b) ? dual.radius(a) > dual.radius(b) : a < b;
-    });
-    services::InsideTest inside(mesh);
-    std::vector<int> tries(engine.preferred_seed.size(), 0);
-    for (CellId c : order) {
-      const auto comp = static_cast<std::size_t>(dual.component(c));
-      if (engine.preferred_seed[comp] != kNoId || tries[comp] > 256) continue;
-      ++tries[comp];
-      if (inside.inside(dual.centre(c))) engine.preferred_seed[comp] = c;
-    }
+  for (CellId c : seed_candidates_by_radius(dual)) {
+    CellId& seed = engine.preferred_seed[static_cast<std::size_t>(dual.component(c))];
+    if (seed == kNoId && engine.centre_inside[c]) seed = c;
   }
   engine.run(progress);
   r.seconds_propagation = seconds_since(t0);

@@ -37,6 +37,8 @@ struct DurixOptions {
   bool preserve_topology = true;
   /// Remove boundary spikes covered within ε (notes §3.7).
   bool simplify_boundaries = true;
+  /// Appendix A: carve cells at the surface whose ball is centred outside the input (ε-tested).
+  bool remove_outside_centres = true;
   /// Split sheets at problematic edges (notes §3.8).
   bool split_problematic = true;
   /// Fixpoint: repeat propagation and carving until a pass removes nothing (at most this many).
@@ -52,6 +54,8 @@ struct DurixReport {
   std::size_t boundary_removals = 0;     ///< boundary spikes carved (§3.7)
   std::size_t flat_cells_peeled = 0;     ///< flat surface cells removed (Appendix A)
   std::size_t leaves_pruned = 0;         ///< curve ends carved (1D boundary simplification)
+  std::size_t outside_centres_removed = 0;  ///< cells with an outside centre carved (Appendix A)
+  std::size_t outside_centres_left = 0;  ///< output nodes whose centre is outside the input
   std::size_t rejected_not_separated = 0;  ///< region reaches the computed skeleton
   std::size_t rejected_manifold = 0;     ///< carving would make M_w non-manifold
   std::size_t rejected_topology = 0;     ///< carving would change χ(M_w)

@@ -69,9 +69,13 @@ class Engine {
   std::size_t simplify_boundaries();
   /// Carves the ends of curves (nodes with three surface facets) covered within ε.
   std::size_t prune_leaves();
-  /// Appendix A: flat cells (four cocircular corners) with two surface facets carry no ball;
-  /// removing one flips the surface diagonal of a planar quad, which moves no vertex.
+  // --- irregular_cells.cpp (Appendix A) -----------------------------------------------------
+  /// Flat cells (four cocircular corners) with two surface facets carry no ball; removing one
+  /// flips the surface diagonal of a planar quad, which moves no vertex.
   std::size_t peel_flat_cells();
+  /// Clusters of cells whose circumcentre lies outside the input, reaching the surface, carved
+  /// into the cells around them when the ε test and the manifold (and topology) checks allow it.
+  std::size_t remove_outside_centres();
   EdgeId choose_seed(int component) const;
 
   // --- problematic.cpp ----------------------------------------------------------------------
@@ -91,6 +95,8 @@ class Engine {
   /// within ε of an output ball.
   std::map<CellId, std::vector<Index>> attached;
   std::vector<CellId> witness;  ///< per vertex: its witness cell (kNoId: not removed)
+  /// Per cell: its circumcentre lies strictly inside the input surface (empty: not computed).
+  std::vector<char> centre_inside;
   /// Per component: the preferred seed cell (largest ball whose centre is inside the input).
   std::vector<CellId> preferred_seed;
 

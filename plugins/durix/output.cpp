@@ -43,6 +43,7 @@ void build_output(const Engine& engine, const SurfaceMesh& mesh, DurixResult& re
       node[c] = mc.add_vertex(d.centre(c), d.radius(c));
       const auto& q = d.cell(c);
       mc.generators.push_back({q[0], q[1], q[2], q[3]});
+      report.outside_centres_left += !engine.centre_inside.empty() && !engine.centre_inside[c];
     }
   mc.generator_kind = "mesh_vertex";
   const std::size_t nv = mc.num_vertices();

@@ -215,33 +215,10 @@ std::size_t Engine::prune_leaves() {
   return removed;
 }
 
-std::size_t Engine::peel_flat_cells() {
-  std::deque<CellId> queue;
-  for (CellId c = 0; c < d.num_cells(); ++c)
-    if (d.solid(c) && d.flat(c)) queue.push_back(c);
-  std::size_t peeled = 0;
-  while (!queue.empty()) {
-    const CellId c = queue.front();
-    queue.pop_front();
-    if (!d.solid(c)) continue;
-    std::vector<CellId> neighbours;
-    for (int k = 0; k < 4; ++k)
-      if (d.solid(d.neighbour(c, k))) neighbours.push_back(d.neighbour(c, k));
-    if (neighbours.size() != 2) continue;  // exactly two surface facets: a flip
-    std::sort(neighbours.begin(), neighbours.end());
-    if (carve(neighbours, {c}, false, false) != CarveOutcome::Removed) continue;
-    ++peeled;
-    for (CellId n : neighbours)
-      if (d.flat(n)) queue.push_back(n);
-  }
-  report.flat_cells_peeled += peeled;
-  return peeled;
-}
-
 std::size_t Engine::pass() {
   d.clear_labels();
   next_label = 0;
-  std::size_t removed = 0;
+  std::size_t removed = options.remove_outside_centres ? remove_outside_centres() : 0;
   for (int comp = 0; comp < d.num_components(); ++comp) {
     const EdgeId seed = choose_seed(comp);
     if (seed != kNoId) removed += propagate(seed);

@@ -144,6 +144,8 @@ StageInfo DurixStage::describe() {
            ParamSpec::boolean("preserve_topology", true,
                               "refuse a carving that changes the Euler characteristic of the working surface"),
            ParamSpec::boolean("simplify_boundaries", true, "carve boundary spikes covered within ε (§4.6)"),
+           ParamSpec::boolean("remove_outside_centres", true,
+                              "carve surface cells whose ball is centred outside the input, when ε allows (Appendix A)"),
            ParamSpec::boolean("split_problematic", true, "split sheets at problematic edges (§4.7)"),
            ParamSpec::integer("max_passes", 10, "fixpoint: passes of propagation and carving at most").range(1, 1000),
            ParamSpec::boolean("write_surface", true,
@@ -170,6 +172,7 @@ MedialComplex DurixStage::extract(const Shape& shape, Context& ctx) {
   DurixOptions options;
   options.preserve_topology = params().boolean("preserve_topology");
   options.simplify_boundaries = params().boolean("simplify_boundaries");
+  options.remove_outside_centres = params().boolean("remove_outside_centres");
   options.split_problematic = params().boolean("split_problematic");
   options.max_passes = static_cast<int>(params().integer("max_passes"));
   try {
@@ -186,6 +189,9 @@ MedialComplex DurixStage::extract(const Shape& shape, Context& ctx) {
                        "separated, {} non-manifold, {} topology; {} unclosed paths",
                        r.passes, r.candidates, r.removals, r.boundary_removals, r.rejected_not_separated,
                        r.rejected_manifold, r.rejected_topology, r.path_failures));
+  ctx.info(fmt::format("Appendix A: {} flat cells peeled, {} cells centred outside the input carved, {} nodes "
+                       "centred outside left",
+                       r.flat_cells_peeled, r.outside_centres_removed, r.outside_centres_left));
   ctx.info(fmt::format("medial axis: {} nodes, {} edges, {} faces; {} sheets, {} curve sheets; problematic edges "
                        "{} found, {} left, {} edges forced singular",
                        r.nodes, r.medial_edges, r.medial_faces, r.sheets, r.curve_sheets, r.problematic_edges,

@@ -2,6 +2,8 @@
 // algorithms (delaunay_mesh.cpp, durix.cpp), logs and extra outputs.
 #include "stages.hpp"
 
+#include "sheet_graph.hpp"
+
 #include "delaunay_mesh.hpp"
 
 #include <medax/services/kdtree.hpp>
@@ -151,7 +153,9 @@ StageInfo DurixStage::describe() {
            ParamSpec::boolean("write_surface", true,
                               "write the working surface M_w as <id>_surface.ply (input frame)"),
            ParamSpec::boolean("write_segmentation", true,
-                              "write the surface segmentation (sheet per face) as <id>_segmentation.ply")}};
+                              "write the surface segmentation (sheet per face) as <id>_segmentation.ply"),
+           ParamSpec::boolean("write_sheet_graph", true,
+                              "write the sheets and their adjacency through singular paths as <id>_sheets.json")}};
 }
 
 void DurixStage::prepare(const Scene& scene) const { check(scene.shape); }
@@ -222,6 +226,10 @@ MedialComplex DurixStage::extract(const Shape& shape, Context& ctx) {
       write_segmentation_ply(out, mesh, last_);
     });
   }
+  if (params().boolean("write_sheet_graph"))
+    ctx.write_output(id() + "_sheets.json", [&](std::ostream& out) {
+      write_sheet_graph_json(out, sheet_graph(last_.medial), to_input.scale);
+    });
   return last_.medial;
 }
 

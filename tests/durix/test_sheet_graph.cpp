@@ -1,0 +1,89 @@
+// The sheet graph (connectivity output): sheets and curves, adjacent through singular paths.
+#include "fixtures.hpp"
+#include "sheet_graph.hpp"
+
+#include <medax/services/topology.hpp>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <numeric>
+#include <sstream>
+
+using namespace medax;
+using namespace medax::durix;
+
+namespace {
+
+DurixResult run(const SurfaceMesh& mesh) {
+  const EpsilonOracle oracle(0.01 * bbox_diagonal(mesh.vertices));
+  return durix_medial_axis(mesh, oracle);
+}
+
+/// Components of the graph over sheets, both kinds of adjacency.
+int graph_components(const SheetGraph& g) {
+  std::vector<int> parent(g.sheets.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const SheetAdjacency& a : g.adjacency) parent[find(a.a)] = find(a.b);
+  int n = 0;
+  for (std::size_t i = 0; i < parent.size(); ++i) n += find(static_cast<int>(i)) == static_cast<int>(i);
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("durix: the sheet graph has every sheet and is connected like the complex", "[durix][sheet_graph]") {
+  for (const char* name : {"box", "torus", "ellipsoid"}) {
+    INFO(name);
+    const DurixResult r = run(durix::test::fixture(name));
+    const SheetGraph g = sheet_graph(r.medial);
+    REQUIRE(g.sheets.size() == r.report.sheets + r.report.curve_sheets);
+    // A connected complex has a connected sheet graph.
+    CHECK(services::complex_topology(r.medial).b0 == 1);
+    CHECK(graph_components(g) == 1);
+    // Areas add up to the complex's; every face sheet has faces, every curve has length.
+    double area = 0;
+    for (const auto& t : r.medial.faces)
+      area += 0.5 * (r.medial.centres[t[1]] - r.medial.centres[t[0]])
+                        .cross(r.medial.centres[t[2]] - r.medial.centres[t[0]])
+                        .norm();
+    double graph_area = 0;
+    for (const SheetNode& s : g.sheets) {
+      graph_area += s.area;
+      CHECK((s.curve ? s.length > 0 : s.polygons > 0));
+    }
+    CHECK(graph_area == Approx(area).epsilon(1e-9));
+    // Every singular edge separates at least two sheets, so the singular adjacencies count at
+    // least as many edge-sheet-pairs as there are singular edges.
+    const auto& type = r.medial.edge_props.labels.get("path_type");
+    const auto singular = static_cast<std::size_t>(
+        std::count_if(type.begin(), type.end(), [](int t) { return t == kSingular || t == kForcedSingular; }));
+    std::size_t pairs = 0;
+    for (const SheetAdjacency& a : g.adjacency) {
+      CHECK(a.a < a.b);
+      pairs += a.singular_edges;
+    }
+    CHECK(pairs >= singular);
+    if (std::string(name) == "box") CHECK(singular > 0);
+  }
+}
+
+TEST_CASE("durix: the sheet graph JSON scales to the input frame", "[durix][sheet_graph]") {
+  const DurixResult r = run(durix::test::fixture("box"));
+  const SheetGraph g = sheet_graph(r.medial);
+  std::ostringstream one, two;
+  write_sheet_graph_json(one, g, 1.0);
+  write_sheet_graph_json(two, g, 2.0);
+  const auto a = nlohmann::json::parse(one.str()), b = nlohmann::json::parse(two.str());
+  REQUIRE(a["sheets"].size() == g.sheets.size());
+  REQUIRE(a["adjacency"].size() == g.adjacency.size());
+  for (std::size_t i = 0; i < g.sheets.size(); ++i) {
+    CHECK(a["sheets"][i]["area"].get<double>() == Approx(g.sheets[i].area));
+    CHECK(b["sheets"][i]["area"].get<double>() == Approx(4 * g.sheets[i].area));
+  }
+  CHECK_THROWS_WITH(sheet_graph(MedialComplex{}), Catch::Contains("not a durix output"));
+}

@@ -185,10 +185,12 @@ void reassign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, 
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
       if (!in.active(static_cast<Index>(v))) continue;
       const int c = cluster_of[v];
-      const bool kept = c >= 0 && static_cast<std::size_t>(c) < count && !moved[static_cast<std::size_t>(c)];
+      const bool assigned = c >= 0 && static_cast<std::size_t>(c) < count;
+      const std::size_t current = assigned ? static_cast<std::size_t>(c) : 0;
       // A vertex whose sphere did not move was at the argmin: only a moved sphere can beat it.
-      const std::size_t best = kept ? all.best_of_subset(static_cast<Index>(v), static_cast<std::size_t>(c), subset, packed, scratch)
-                                    : all.best_of_all(static_cast<Index>(v), c >= 0 && static_cast<std::size_t>(c) < count ? static_cast<std::size_t>(c) : 0, scratch);
+      const std::size_t best = assigned && !moved[current]
+                                   ? all.best_of_subset(static_cast<Index>(v), current, subset, packed, scratch)
+                                   : all.best_of_all(static_cast<Index>(v), current, scratch);
       cluster_of[v] = static_cast<int>(best);
     }
   });

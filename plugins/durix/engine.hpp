@@ -65,6 +65,8 @@ class Engine {
   /// One pass: labels from a fresh seed per component, carving insignificant sheets. Returns
   /// the number of regions removed.
   std::size_t pass();
+  /// Passes until one carves nothing (at most options.max_passes).
+  void run_passes(const ProgressFn& progress);
   std::size_t propagate(EdgeId seed);
   std::size_t simplify_boundaries();
   /// Carves the ends of curves (nodes with three surface facets) covered within ε.

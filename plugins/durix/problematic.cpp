@@ -88,7 +88,7 @@ void Engine::split_problematic() {
   };
 
   std::vector<Facet> found = collect();
-  report.problematic_edges = found.size();
+  report.problematic_edges += found.size();
   for (int round = 0; round < 32 && !found.empty(); ++round) {
     if (check_cancelled) check_cancelled();
     bool progress = false;

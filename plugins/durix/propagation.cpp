@@ -233,8 +233,7 @@ std::size_t Engine::pass() {
   return removed;
 }
 
-void Engine::run(const ProgressFn& progress) {
-  peel_flat_cells();
+void Engine::run_passes(const ProgressFn& progress) {
   for (int i = 0; i < std::max(1, options.max_passes); ++i) {
     if (progress) progress(0.1 + 0.6 * i / std::max(1, options.max_passes), "propagation pass");
     ++report.passes;
@@ -244,14 +243,27 @@ void Engine::run(const ProgressFn& progress) {
       // match the final solid.
       d.clear_labels();
       next_label = 0;
-      std::deque<HalfEdge> none;
       for (EdgeId e = 0; e < d.num_edges(); ++e)
         if (d.volumetric(e) && d.label(e) < 0) label_sheet(e, next_label++, nullptr);
     }
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  if (options.split_problematic) split_problematic();
-  report.seconds_problematic = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void Engine::run(const ProgressFn& progress) {
+  peel_flat_cells();
+  // Splitting at problematic edges (§3.8) forces new singular paths. The pieces it splits off
+  // are sheets like any other: the next passes test them against ε across those paths (most are
+  // small flaps, carved), and the split runs again on what remains, until it forces nothing new.
+  constexpr int kSplitRounds = 8;
+  for (int round = 0; round < kSplitRounds; ++round) {
+    run_passes(progress);
+    if (!options.split_problematic) break;
+    const std::size_t forced_before = report.forced_edges;
+    const auto t0 = std::chrono::steady_clock::now();
+    split_problematic();
+    report.seconds_problematic += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (report.forced_edges == forced_before) break;
+  }
   census_paths();
 }
 

@@ -1,10 +1,10 @@
 // The stages of the durix package: parameters, checks against the data, calls into the
-// algorithms (delaunay_mesh.cpp, durix.cpp), logs and extra outputs.
+// algorithms (remesh_fallback.cpp, durix.cpp), logs and extra outputs.
 #include "stages.hpp"
 
 #include "sheet_graph.hpp"
 
-#include "delaunay_mesh.hpp"
+#include "remesh_fallback.hpp"
 
 #include <medax/services/kdtree.hpp>
 #include <medax/services/mesh_check.hpp>
@@ -74,16 +74,40 @@ void EpsilonOracleStage::measure(const Shape& shape, MedialComplex& medial, Cont
 StageInfo DelaunaySurfaceStage::describe() {
   return {"delaunay_surface",
           "Makes the mesh a Delaunay mesh (every triangle a facet of the Delaunay tetrahedralization of its "
-          "vertices) by edge flips and splits (Dyer, Zhang, Möller 2007); verified, refuses what it cannot convert",
+          "vertices) by edge flips and splits (Dyer, Zhang, Möller 2007), or by a restricted-Delaunay remesh "
+          "(CGAL Mesh_3) where they fail; verified, refuses what it cannot convert",
           "docs/plugins/durix.md#delaunay_surface",
-          {ParamSpec::real("feature_angle", 20.0,
-                           "flip a non-Delaunay edge only where its faces bend less than this; split it otherwise")
+          {ParamSpec::choice("method", "dzm07", {"dzm07", "remesh"},
+                             "dzm07: flips and splits, keeps the input vertices; remesh: resample the surface with "
+                             "Mesh_3 (the input vertices are not kept)"),
+           ParamSpec::choice("fallback", "remesh", {"remesh", "none"},
+                             "when dzm07 fails: remesh (with a warning) or refuse"),
+           ParamSpec::real("feature_angle", 20.0,
+                           "dzm07: flip a non-Delaunay edge only where its faces bend less than this; split it "
+                           "otherwise")
                .range(0, 90)
                .in_unit("degrees"),
-           ParamSpec::boolean("flips", true, "allow flips (false: splits only, the surface never moves)"),
-           ParamSpec::real("max_insertions", 4.0, "give up after inserting this many points per input vertex (+1000)")
+           ParamSpec::boolean("flips", true, "dzm07: allow flips (false: splits only, the surface never moves)"),
+           ParamSpec::real("max_insertions", 4.0,
+                           "dzm07: give up after inserting this many points per input vertex (+1000)")
                .at_least(0)
                .in_unit("ratio"),
+           ParamSpec::real("remesh_facet_size", RemeshOptions{}.facet_size,
+                           "remesh: largest surface Delaunay ball radius, times the input's mean edge length")
+               .at_least(1e-3)
+               .in_unit("mean edge length"),
+           ParamSpec::real("remesh_facet_distance", RemeshOptions{}.facet_distance,
+                           "remesh: largest distance from a facet's circumcentre to the input surface")
+               .range(1e-5, 0.1)
+               .in_unit("bbox diagonal"),
+           ParamSpec::real("remesh_facet_angle", RemeshOptions{}.facet_angle_deg,
+                           "remesh: smallest facet angle (Mesh_3 terminates up to 30)")
+               .range(1, 30)
+               .in_unit("degrees"),
+           ParamSpec::integer("remesh_attempts", DelaunaySurfaceOptions{}.remesh_attempts,
+                              "remesh: attempts, each at half the size and distance of the one before, until the "
+                              "result keeps the genus and components")
+               .range(1, 6),
            ParamSpec::boolean("check_self_intersections", true,
                               "refuse self-intersecting meshes (the exact test; the solid is undefined otherwise)")}};
 }
@@ -103,34 +127,61 @@ void DelaunaySurfaceStage::condition(Shape& shape, Context& ctx) {
     throw std::runtime_error("delaunay_surface: cannot convert this mesh: " + report.describe_problems() +
                              " (a Delaunay mesh must bound a solid: closed, manifold, outward, without duplicates; "
                              "put a `repair` stage before)");
-  DelaunayMeshOptions options;
-  options.feature_angle_deg = params().real("feature_angle");
-  options.flips = params().boolean("flips");
-  options.max_insertions_factor = params().real("max_insertions");
-  DelaunayMeshReport r;
-  SurfaceMesh converted;
+  const DelaunaySurfaceOptions options = conversion_options();
+  DelaunaySurfaceResult r;
   try {
-    converted = make_delaunay_mesh(shape.mesh, options, &r, [&ctx] { ctx.check_cancelled(); });
+    r = make_delaunay_surface(shape.mesh, options, [&ctx] { ctx.check_cancelled(); });
   } catch (const Cancelled&) {
     throw;
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("delaunay_surface: cannot convert this mesh: ") + e.what());
   }
+  if (r.method == DelaunayMethod::Dzm07) {
+    if (!log_dzm07(r.dzm07, ctx)) return;
+  } else {
+    if (!r.dzm07_failure.empty())
+      ctx.warn("DZM07 flips and splits failed (" + r.dzm07_failure +
+               "); fell back to the restricted-Delaunay remesh (fallback: remesh)");
+    const RemeshReport& m = r.remesh;
+    ctx.info(fmt::format("remesh (Mesh_3, facet size {:.4g}, distance {:.4g}): {} vertices, {} faces, genus {}, {} "
+                         "component(s), from a tetrahedral mesh of {} vertices ({:.3f} s with the checks); the input "
+                         "vertices are NOT kept: the surface is resampled",
+                         m.facet_size, m.facet_distance, m.output_vertices, m.output_faces, r.genus, r.components,
+                         m.mesh3_vertices, r.seconds));
+  }
+  shape.mesh = std::move(r.mesh);
+  if (!shape.samples.empty()) {
+    ctx.warn("dropped the samples taken before delaunay_surface (the surface changed); put `sample` after it");
+    shape.samples = {};
+  }
+}
+
+DelaunaySurfaceOptions DelaunaySurfaceStage::conversion_options() const {
+  DelaunaySurfaceOptions options;
+  options.method = params().text("method") == "remesh" ? DelaunayMethod::Remesh : DelaunayMethod::Dzm07;
+  options.fallback_to_remesh = params().text("fallback") == "remesh";
+  options.dzm07.feature_angle_deg = params().real("feature_angle");
+  options.dzm07.flips = params().boolean("flips");
+  options.dzm07.max_insertions_factor = params().real("max_insertions");
+  options.remesh.facet_size = params().real("remesh_facet_size");
+  options.remesh.facet_distance = params().real("remesh_facet_distance");
+  options.remesh.facet_angle_deg = params().real("remesh_facet_angle");
+  options.remesh_attempts = static_cast<int>(params().integer("remesh_attempts"));
+  return options;
+}
+
+bool DelaunaySurfaceStage::log_dzm07(const DelaunayMeshReport& r, Context& ctx) {
   ctx.info(fmt::format("{} of {} faces and {} edges were not Delaunay", r.non_delaunay_faces_before, r.input_faces,
                        r.non_delaunay_edges_before));
   if (r.flips + r.edge_splits + r.face_splits == 0) {
     ctx.info("the mesh is already a Delaunay mesh");
-    return;
+    return false;
   }
   ctx.info(fmt::format("{} flips, {} edge splits, {} face splits in {} sweeps: {} vertices, {} faces "
                        "({:.3f} s, of which verification {:.3f} s)",
                        r.flips, r.edge_splits, r.face_splits, r.sweeps, r.output_vertices, r.output_faces, r.seconds,
                        r.seconds_verify));
-  shape.mesh = std::move(converted);
-  if (!shape.samples.empty()) {
-    ctx.warn("dropped the samples taken before delaunay_surface (the surface changed); put `sample` after it");
-    shape.samples = {};
-  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------------

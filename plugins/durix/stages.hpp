@@ -1,8 +1,9 @@
 #pragma once
 // The durix package's stages: `delaunay_surface` (conditioning), `durix` (extraction) and
 // `durix_epsilon` (the ε-oracle, a significance stage injected into `durix`). Thin faces over
-// delaunay_mesh.hpp and durix.hpp.
+// remesh_fallback.hpp and durix.hpp.
 #include "durix.hpp"
+#include "remesh_fallback.hpp"
 #include "significance.hpp"
 
 #include <medax/stage.hpp>
@@ -33,6 +34,11 @@ class DelaunaySurfaceStage : public ConditioningStage {
   static StageInfo describe();
   void prepare(const Scene& scene) const override;
   void condition(Shape& shape, Context& ctx) override;
+
+ private:
+  DelaunaySurfaceOptions conversion_options() const;
+  /// Logs the flips and splits; false when the mesh was already Delaunay (nothing to replace).
+  static bool log_dzm07(const DelaunayMeshReport& report, Context& ctx);
 };
 
 class DurixStage : public ExtractionStage {

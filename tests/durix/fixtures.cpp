@@ -45,6 +45,42 @@ SurfaceMesh fixture(const std::string& name) {
   return to_delaunay(m);
 }
 
+SurfaceMesh cube_union(const std::vector<std::array<int, 3>>& cells, int n) {
+  const std::set<std::array<int, 3>> filled(cells.begin(), cells.end());
+  SurfaceMesh m;
+  std::map<std::array<int, 3>, Index> vertex;  // grid point (in 1/n units) -> index
+  const auto at = [&](std::array<int, 3> g) {
+    const auto [it, inserted] = vertex.emplace(g, static_cast<Index>(m.vertices.size()));
+    if (inserted) m.vertices.emplace_back(double(g[0]) / n, double(g[1]) / n, double(g[2]) / n);
+    return it->second;
+  };
+  for (const auto& c : cells)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side : {-1, 1}) {
+        std::array<int, 3> neighbour = c;
+        neighbour[axis] += side;
+        if (filled.count(neighbour)) continue;
+        // Tangent axes u, v with u × v = the outward normal.
+        int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        if (side < 0) std::swap(u, v);
+        std::array<int, 3> origin = {c[0] * n, c[1] * n, c[2] * n};
+        if (side > 0) origin[axis] += n;
+        const auto grid = [&](int i, int j) {
+          std::array<int, 3> g = origin;
+          g[u] += i;
+          g[v] += j;
+          return at(g);
+        };
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) {
+            const Index a = grid(i, j), b = grid(i + 1, j), d = grid(i + 1, j + 1), e = grid(i, j + 1);
+            m.faces.push_back({a, b, d});
+            m.faces.push_back({a, d, e});
+          }
+      }
+  return m;
+}
+
 SurfaceMesh bumped_ellipsoid(double height) {
   SurfaceMesh m = testing::make_ellipsoid(1.2, 1.0, 0.8, 4);
   const double width = 0.15;

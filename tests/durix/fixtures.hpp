@@ -6,7 +6,9 @@
 
 #include <medax/surface.hpp>
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace medax::durix::test {
 
@@ -15,6 +17,10 @@ namespace medax::durix::test {
 SurfaceMesh fixture(const std::string& name);
 /// An ellipsoid (a, b, c) = (1.2, 1, 0.8) with a smooth bump of `height` at its top (+z).
 SurfaceMesh bumped_ellipsoid(double height);
+/// The union of unit cubes at integer `cells` (face-adjacent only: no two cells may share just an
+/// edge or a vertex), each cube face split into n × n squares of two triangles: a CAD-like solid
+/// with sharp convex and concave creases. Not converted.
+SurfaceMesh cube_union(const std::vector<std::array<int, 3>>& cells, int n);
 /// Runs the conversion and requires it to verify.
 SurfaceMesh to_delaunay(const SurfaceMesh& mesh);
 

@@ -47,8 +47,9 @@ TEST_CASE("durix: the durix package runs as a pipeline and writes its outputs", 
   const RunResult a = run(registry, dir, stages, "a");
   INFO(a.error);
   REQUIRE(a.ok);
-  for (const char* file : {"medial.ma", "medial.ply", "durix_surface.ply", "durix_segmentation.ply"})
+  for (const char* file : {"medial.ma", "medial.ply", "durix_surface.ply", "durix_segmentation.ply", "durix_sheets.json"})
     CHECK(std::filesystem::exists(dir / "a" / file));
+  CHECK(slurp(dir / "a" / "durix_sheets.json").find("\"adjacency\"") != std::string::npos);
   const std::string segmentation = slurp(dir / "a" / "durix_segmentation.ply");
   CHECK(segmentation.find("property int sheet") != std::string::npos);
   CHECK(segmentation.find("property uchar red") != std::string::npos);
@@ -61,7 +62,7 @@ TEST_CASE("durix: the durix package runs as a pipeline and writes its outputs", 
   // Same config and seed: the same bytes.
   const RunResult b = run(registry, dir, stages, "b");
   REQUIRE(b.ok);
-  for (const char* file : {"medial.ma", "medial.ply", "durix_surface.ply", "durix_segmentation.ply"})
+  for (const char* file : {"medial.ma", "medial.ply", "durix_surface.ply", "durix_segmentation.ply", "durix_sheets.json"})
     CHECK(slurp(dir / "a" / file) == slurp(dir / "b" / file));
 }
 

@@ -54,7 +54,7 @@ struct RecordingContext : BasicContext {
 
 }  // namespace
 
-TEST_CASE("remesh fallback: DZM07 fails on a thin jittered L-bar and the remesh converts it",
+TEST_CASE("durix remesh fallback: DZM07 fails on a thin jittered L-bar and the remesh converts it",
           "[durix][delaunay_surface][remesh]") {
   const SurfaceMesh bar = thin_l_bar();
   REQUIRE(services::check_mesh(bar).ok());
@@ -66,7 +66,7 @@ TEST_CASE("remesh fallback: DZM07 fails on a thin jittered L-bar and the remesh 
   CHECK(one_sided_distance(r.mesh, bar) < 0.01 * bbox_diagonal(bar.vertices));
 }
 
-TEST_CASE("remesh fallback: fallback none refuses the L-bar and says what to do", "[durix][delaunay_surface][remesh]") {
+TEST_CASE("durix remesh fallback: fallback none refuses the L-bar and says what to do", "[durix][delaunay_surface][remesh]") {
   DelaunaySurfaceOptions options;
   options.fallback_to_remesh = false;
   try {
@@ -77,7 +77,7 @@ TEST_CASE("remesh fallback: fallback none refuses the L-bar and says what to do"
   }
 }
 
-TEST_CASE("remesh fallback: two runs give identical meshes", "[durix][delaunay_surface][remesh]") {
+TEST_CASE("durix remesh fallback: two runs give identical meshes", "[durix][delaunay_surface][remesh]") {
   const SurfaceMesh bar = thin_l_bar();
   const DelaunaySurfaceResult a = make_delaunay_surface(bar), b = make_delaunay_surface(bar);
   REQUIRE(a.mesh.vertices.size() == b.mesh.vertices.size());
@@ -85,7 +85,7 @@ TEST_CASE("remesh fallback: two runs give identical meshes", "[durix][delaunay_s
   CHECK(a.mesh.faces == b.mesh.faces);
 }
 
-TEST_CASE("method remesh keeps the genus and stays near a sphere and a torus", "[durix][delaunay_surface][remesh]") {
+TEST_CASE("durix method remesh keeps the genus and stays near a sphere and a torus", "[durix][delaunay_surface][remesh]") {
   const std::vector<std::pair<std::string, SurfaceMesh>> shapes = {
       {"sphere", testing::make_sphere(1.0, 3)}, {"torus", testing::make_torus(1.0, 0.35, 48, 16)}};
   DelaunaySurfaceOptions options;
@@ -105,7 +105,7 @@ TEST_CASE("method remesh keeps the genus and stays near a sphere and a torus", "
   }
 }
 
-TEST_CASE("remesh: a result that lost a component is refused, saying what to do", "[durix][delaunay_surface][remesh]") {
+TEST_CASE("durix remesh: a result that lost a component is refused, saying what to do", "[durix][delaunay_surface][remesh]") {
   // A small sphere beside a big one, and initial points taken from the big one only: the mesher
   // never finds the small one, and the component count check catches it.
   SurfaceMesh two = testing::make_sphere(1.0, 3);
@@ -121,7 +121,7 @@ TEST_CASE("remesh: a result that lost a component is refused, saying what to do"
                     Catch::Contains("1 component(s), the input genus 0 in 2") && Catch::Contains("lower remesh_facet_size"));
 }
 
-TEST_CASE("delaunay_surface stage: the fallback warns, fallback none refuses", "[durix][delaunay_surface][stages]") {
+TEST_CASE("durix delaunay_surface stage: the fallback warns, fallback none refuses", "[durix][delaunay_surface][stages]") {
   DelaunaySurfaceStage stage;
   ParamSet params = default_params(DelaunaySurfaceStage::describe().params);
   stage.configure(params);

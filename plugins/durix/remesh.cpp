@@ -9,6 +9,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_3/Dump_c3t3.h>
 #include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polyhedral_mesh_domain_3.h>
 #include <CGAL/Surface_mesh.h>
@@ -30,6 +31,19 @@ using Domain = CGAL::Polyhedral_mesh_domain_3<Polyhedron, K>;
 using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
 using Criteria = CGAL::Mesh_criteria_3<Tr>;
+
+}  // namespace
+}  // namespace medax::durix
+
+// Before reporting some errors Mesh_3 writes its whole complex to dump-bug.* in the working
+// directory; a library must not write there (the error itself still reaches the caller).
+template <bool streamable>
+struct CGAL::Dump_c3t3<medax::durix::C3t3, streamable> {
+  void dump_c3t3(const medax::durix::C3t3&, const std::string&) const {}
+};
+
+namespace medax::durix {
+namespace {
 
 Polyhedron to_cgal(const SurfaceMesh& mesh) {
   Polyhedron out;
@@ -118,15 +132,19 @@ SurfaceMesh remesh_restricted_delaunay(const SurfaceMesh& mesh, const RemeshOpti
   insert_initial_points(mesh, options.initial_points, domain, c3t3);
   // A vertex cap: on some inputs (lamp, a thin shell) the manifold refinement does not stop
   // before the memory is gone.
-  const std::size_t max_vertices = options.max_vertices_factor * mesh.vertices.size() + 100000;
+  const std::size_t max_vertices = options.max_vertices_factor * mesh.vertices.size() + options.max_vertices_base;
   CGAL::Mesh_error_code error = CGAL::CGAL_MESH_3_NO_ERROR;
-  CGAL::refine_mesh_3(c3t3, domain, criteria, p::no_perturb(), p::no_exude(), p::no_lloyd(), p::no_odt(),
-                      p::manifold(),
-                      p::mesh_3_options(p::maximal_number_of_vertices = max_vertices, p::pointer_to_error_code = &error));
+  try {
+    CGAL::refine_mesh_3(c3t3, domain, criteria, p::no_perturb(), p::no_exude(), p::no_lloyd(), p::no_odt(),
+                        p::manifold(),
+                        p::mesh_3_options(p::maximal_number_of_vertices = max_vertices,
+                                          p::pointer_to_error_code = &error));
+  } catch (const CGAL::Failure_exception& e) {
+    throw RemeshRefinementError("Mesh_3 stopped on an internal error (" + e.message() + ")");
+  }
   if (error != CGAL::CGAL_MESH_3_NO_ERROR)
-    throw std::runtime_error("the remesh reached its cap of " + std::to_string(max_vertices) +
-                             " vertices before meeting the facet criteria (thin parts or near-touching surfaces); "
-                             "raise remesh_facet_size and remesh_facet_distance, or repair the input");
+    throw RemeshRefinementError("the remesh reached its cap of " + std::to_string(max_vertices) +
+                                " vertices before meeting the facet criteria (thin parts or near-touching surfaces)");
   SurfaceMesh out = boundary_of_cells(c3t3);
   r.mesh3_vertices = c3t3.triangulation().number_of_vertices();
   r.restricted_facets = c3t3.number_of_facets_in_complex();

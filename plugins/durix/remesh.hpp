@@ -6,6 +6,8 @@
 // kept (the surface is resampled). CGAL stays inside remesh.cpp.
 #include <medax/surface.hpp>
 
+#include <stdexcept>
+
 #include <cstddef>
 
 namespace medax::durix {
@@ -23,10 +25,17 @@ struct RemeshOptions {
   double facet_angle_deg = 25.0;
   /// Loose cell criterion (radius-edge ratio); the cells are not part of the result.
   double cell_radius_edge_ratio = 4.0;
-  /// Stop (and fail) at this many Mesh_3 vertices per input vertex (+100000).
+  /// Stop (and fail) at max_vertices_factor Mesh_3 vertices per input vertex + max_vertices_base.
   std::size_t max_vertices_factor = 20;
+  std::size_t max_vertices_base = 100000;
   /// About this many input vertices (every k-th) seed the mesher on the surface.
   std::size_t initial_points = 1000;
+};
+
+/// The mesher did not finish: it reached its vertex cap or stopped on an internal error. Its
+/// refinement is sensitive to the sizes, so another attempt at other sizes may succeed.
+struct RemeshRefinementError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 struct RemeshReport {

@@ -139,3 +139,28 @@ TEST_CASE("durix delaunay_surface stage: the fallback warns, fallback none refus
   CHECK_THROWS_WITH(stage.condition(shape, ctx),
                     Catch::Contains("delaunay_surface: cannot convert") && Catch::Contains("fallback"));
 }
+
+TEST_CASE("durix remesh: an attempt that does not finish is retried at twice the facet distance", "[durix][remesh]") {
+  // A vertex cap that the first attempt (a fine facet distance) cannot meet and the coarser
+  // retries can: the conversion succeeds on a later attempt, and the refusal when attempts run
+  // out lists every attempt.
+  const SurfaceMesh sphere = testing::make_sphere(1.0, 3);
+  DelaunaySurfaceOptions options;
+  options.method = DelaunayMethod::Remesh;
+  // Only the distance bounds the facets; from 50 seed points the mesher needs about 3500
+  // vertices at facet distance 0.0005 and 1200 at 0.001 (measured).
+  options.remesh.facet_size = 100;
+  options.remesh.facet_distance = 0.0005;
+  options.remesh.initial_points = 50;
+  options.remesh.max_vertices_factor = 0;
+  options.remesh.max_vertices_base = 2000;
+  options.remesh_attempts = 1;
+  CHECK_THROWS_WITH(make_delaunay_surface(sphere, options),
+                    Catch::Contains("attempt 1 at facet_size 100, facet_distance 0.0005: the remesh reached its cap") &&
+                        Catch::Contains("raise remesh_facet_distance"));
+  options.remesh_attempts = 3;
+  const DelaunaySurfaceResult r = make_delaunay_surface(sphere, options);
+  CHECK(r.method == DelaunayMethod::Remesh);
+  CHECK(r.remesh.facet_distance == Approx(0.001 * bbox_diagonal(sphere.vertices)));
+  check_conversion(sphere, r.mesh);
+}

@@ -26,7 +26,7 @@ struct RemeshOptions {
   /// Loose cell criterion (radius-edge ratio); the cells are not part of the result.
   double cell_radius_edge_ratio = 4.0;
   /// Stop (and fail) at max_vertices_factor Mesh_3 vertices per input vertex + max_vertices_base.
-  std::size_t max_vertices_factor = 20;
+  std::size_t max_vertices_factor = 10;
   std::size_t max_vertices_base = 100000;
   /// About this many input vertices (every k-th) seed the mesher on the surface.
   std::size_t initial_points = 1000;

@@ -52,12 +52,17 @@ std::string result_problems(const SurfaceMesh& out, const Topology& input, bool 
 /// (its manifold refinement can run away at near-touching sheets and creases; measured on
 /// cheese at facet_distance 0.002 of the diagonal, while 0.001 and 0.004 converge).
 SurfaceMesh remesh_checked(const SurfaceMesh& mesh, const Topology& input, const DelaunaySurfaceOptions& options,
-                           RemeshReport& report, const std::function<void()>& check_cancelled) {
+                           RemeshReport& report, const std::function<void()>& check_cancelled,
+                           const std::function<void(const std::string&)>& note) {
   RemeshOptions attempt = options.remesh;
   std::string failures;
   for (int k = 0; k < options.remesh_attempts; ++k) {
     if (check_cancelled) check_cancelled();
     const RemeshOptions tried = attempt;
+    if (note)
+      note(fmt::format("remesh attempt {} of {}: facet_size {:.3g} × the mean edge length, facet_distance {:.3g} × "
+                       "the diagonal",
+                       k + 1, options.remesh_attempts, tried.facet_size, tried.facet_distance));
     std::string failure;
     try {
       SurfaceMesh out = remesh_restricted_delaunay(mesh, attempt, &report);
@@ -71,6 +76,7 @@ SurfaceMesh remesh_checked(const SurfaceMesh& mesh, const Topology& input, const
       failure = e.what();
       attempt.facet_distance *= 2;
     }
+    if (note) note(fmt::format("remesh attempt {} failed: {}", k + 1, failure));
     failures += fmt::format("{}attempt {} at facet_size {:.3g}, facet_distance {:.3g}: {}", k ? "; " : "", k + 1,
                             tried.facet_size, tried.facet_distance, failure);
   }
@@ -86,7 +92,8 @@ SurfaceMesh remesh_checked(const SurfaceMesh& mesh, const Topology& input, const
 const char* method_name(DelaunayMethod method) { return method == DelaunayMethod::Dzm07 ? "dzm07" : "remesh"; }
 
 DelaunaySurfaceResult make_delaunay_surface(const SurfaceMesh& mesh, const DelaunaySurfaceOptions& options,
-                                            const std::function<void()>& check_cancelled) {
+                                            const std::function<void()>& check_cancelled,
+                                            const std::function<void(const std::string&)>& note) {
   const auto t0 = std::chrono::steady_clock::now();
   DelaunaySurfaceResult result;
   const Topology input = topology_of_input(mesh);
@@ -110,7 +117,7 @@ DelaunaySurfaceResult make_delaunay_surface(const SurfaceMesh& mesh, const Delau
   }
   if (options.method == DelaunayMethod::Remesh || !result.dzm07_failure.empty()) {
     try {
-      result.mesh = remesh_checked(mesh, input, options, result.remesh, check_cancelled);
+      result.mesh = remesh_checked(mesh, input, options, result.remesh, check_cancelled, note);
     } catch (const Cancelled&) {
       throw;
     } catch (const std::runtime_error& e) {

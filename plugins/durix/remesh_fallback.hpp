@@ -39,8 +39,10 @@ struct DelaunaySurfaceResult {
 /// Converts `mesh` (closed, manifold, outward, no duplicates; checked by the caller) into a
 /// Delaunay mesh by `options.method`, with the remesh fallback for DZM07. Throws
 /// std::runtime_error naming what failed and what to do when no method gives a result that
-/// passes every check.
+/// passes every check. `note` hears each remesh attempt as it starts and why it failed (a
+/// remesh can take a minute).
 DelaunaySurfaceResult make_delaunay_surface(const SurfaceMesh& mesh, const DelaunaySurfaceOptions& options = {},
-                                            const std::function<void()>& check_cancelled = {});
+                                            const std::function<void()>& check_cancelled = {},
+                                            const std::function<void(const std::string&)>& note = {});
 
 }  // namespace medax::durix

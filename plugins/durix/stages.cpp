@@ -105,8 +105,8 @@ StageInfo DelaunaySurfaceStage::describe() {
                .range(1, 30)
                .in_unit("degrees"),
            ParamSpec::integer("remesh_attempts", DelaunaySurfaceOptions{}.remesh_attempts,
-                              "remesh: attempts, each at half the size and distance of the one before, until the "
-                              "result keeps the genus and components")
+                              "remesh: attempts; after a lost handle or component at half the size and distance, "
+                              "after a run to the vertex cap or a mesher error at twice the distance")
                .range(1, 6),
            ParamSpec::boolean("check_self_intersections", true,
                               "refuse self-intersecting meshes (the exact test; the solid is undefined otherwise)")}};
@@ -130,7 +130,8 @@ void DelaunaySurfaceStage::condition(Shape& shape, Context& ctx) {
   const DelaunaySurfaceOptions options = conversion_options();
   DelaunaySurfaceResult r;
   try {
-    r = make_delaunay_surface(shape.mesh, options, [&ctx] { ctx.check_cancelled(); });
+    r = make_delaunay_surface(
+        shape.mesh, options, [&ctx] { ctx.check_cancelled(); }, [&ctx](const std::string& line) { ctx.info(line); });
   } catch (const Cancelled&) {
     throw;
   } catch (const std::exception& e) {

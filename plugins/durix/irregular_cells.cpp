@@ -42,30 +42,28 @@ std::size_t Engine::remove_outside_centres() {
   // because one cell with a single surface facet cannot leave alone: its apex is already on the
   // surface, so M_w would pinch there.
   if (centre_inside.empty()) return 0;
+  // Marks: a cell of some cluster (for the whole sweep: tried once), or a kept cell around the
+  // current cluster (reset after it, as it may border other clusters).
+  enum : char { kFree = 0, kClustered = 1, kKeptHere = 2 };
+  std::vector<char> mark(d.num_cells(), kFree);
   std::size_t removed = 0;
-  std::vector<char> tried(d.num_cells(), 0);
   std::vector<CellId> cluster, kept;
   for (CellId c0 = 0; c0 < d.num_cells(); ++c0) {
-    if (!d.solid(c0) || centre_inside[c0] || tried[c0]) continue;
+    if (!d.solid(c0) || centre_inside[c0] || mark[c0] != kFree) continue;
     bool at_surface = false;
     for (int k = 0; k < 4; ++k) at_surface |= !d.solid(d.neighbour(c0, k));
     if (!at_surface) continue;
     cluster.assign(1, c0);
     kept.clear();
-    tried[c0] = 1;
+    mark[c0] = kClustered;
     for (std::size_t i = 0; i < cluster.size(); ++i)
       for (int k = 0; k < 4; ++k) {
         const CellId n = d.neighbour(cluster[i], k);
-        if (!d.solid(n) || tried[n] == 1 || (centre_inside[n] && tried[n] == 2)) continue;
-        if (centre_inside[n]) {
-          tried[n] = 2;  // marks a kept cell for this cluster only; reset below
-          kept.push_back(n);
-        } else {
-          tried[n] = 1;
-          cluster.push_back(n);
-        }
+        if (!d.solid(n) || mark[n] != kFree) continue;
+        mark[n] = centre_inside[n] ? kKeptHere : kClustered;
+        (centre_inside[n] ? kept : cluster).push_back(n);
       }
-    for (CellId n : kept) tried[n] = 0;
+    for (CellId n : kept) mark[n] = kFree;
     if (kept.empty()) continue;  // a whole component: nothing to carve into
     std::sort(kept.begin(), kept.end());
     if (carve(kept, cluster, false) == CarveOutcome::Removed) removed += cluster.size();

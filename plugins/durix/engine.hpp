@@ -83,6 +83,8 @@ class Engine {
   // --- problematic.cpp ----------------------------------------------------------------------
   void split_problematic();
   bool problematic(const Facet& f) const;
+  /// Cuts the fin of a problematic edge off its sheet (forced edges, a new label).
+  void split_fin(const Facet& edge);
 
   // --- state --------------------------------------------------------------------------------
   Dual& d;

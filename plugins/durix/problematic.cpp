@@ -3,10 +3,11 @@
 // end (the end not on the sheet's boundary) to the nearest boundary node of the sheet by a
 // shortest path (Dijkstra on centre distances) over the sheet's regular edges; those edges are
 // forced singular and the sheet is relabelled, which splits it. Whatever remains (chains closed
-// on themselves, or with no free end) is resolved by isolating one face of the edge (its
-// regular edges forced singular), so the check "no edge has three faces of one sheet" holds.
+// on themselves, or with no free end) is resolved by cutting off the edge's fin by competing
+// fronts (split_fin), so the check "no edge has three faces of one sheet" holds.
 #include "engine.hpp"
 
+#include <cmath>
 #include <map>
 #include <queue>
 
@@ -33,6 +34,86 @@ bool Engine::problematic(const Facet& f) const {
   facet_faces(d, f, faces);
   const int l = d.label(faces[0]);
   return l >= 0 && d.label(faces[1]) == l && d.label(faces[2]) == l;
+}
+
+void Engine::split_fin(const Facet& edge) {
+  // The fin is the face at the edge whose plane is least parallel to the other two (a Voronoi
+  // face lies in the bisector plane of its DT edge); the other two continue the sheet through
+  // the edge. Fronts grow from the fin and from the two others at once over the sheet's regular
+  // edges (Dijkstra on polygon centroid distances); a face belongs to the front that reaches it
+  // first. The regular edges between the fin's region and the rest become forced singular, and
+  // the region gets a new label: a piece of several faces that the next passes can test against
+  // ε, where isolating one face would leave a one-polygon sheet.
+  EdgeId faces[3];
+  facet_faces(d, edge, faces);
+  const int label = d.label(faces[0]);
+  const auto normal = [&](EdgeId f) {
+    const auto v = d.edge_vertices(f);
+    return (d.point(v[1]) - d.point(v[0])).normalized();
+  };
+  int fin = 0;
+  double most_parallel = -1;
+  for (int i = 0; i < 3; ++i) {
+    const double p = std::abs(normal(faces[(i + 1) % 3]).dot(normal(faces[(i + 2) % 3])));
+    if (p > most_parallel) most_parallel = p, fin = i;
+  }
+  std::vector<CellId> ring;
+  const auto centroid = [&](EdgeId f) {
+    d.ring(f, ring);
+    Vec3 c = Vec3::Zero();
+    for (CellId cell : ring) c += d.centre(cell);
+    return Vec3(c / double(ring.size()));
+  };
+  struct Entry {
+    double distance;
+    EdgeId face;
+    bool fin;
+    bool operator>(const Entry& o) const { return distance != o.distance ? distance > o.distance : face > o.face; }
+  };
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  std::map<EdgeId, bool> owner;  // settled faces: true for the fin's region
+  std::map<EdgeId, double> best;
+  std::size_t fin_entries = 0;
+  const auto push = [&](double distance, EdgeId f, bool is_fin) {
+    const auto it = best.find(f);
+    if (owner.count(f) || (it != best.end() && it->second <= distance)) return;
+    best[f] = distance;
+    heap.push({distance, f, is_fin});
+    fin_entries += is_fin;
+  };
+  for (int i = 0; i < 3; ++i) push(0, faces[i], i == fin);
+  std::vector<Facet> around;
+  while (!heap.empty() && fin_entries > 0) {
+    const Entry top = heap.top();
+    heap.pop();
+    fin_entries -= top.fin;
+    if (owner.count(top.face) || best[top.face] < top.distance) continue;
+    owner[top.face] = top.fin;
+    const Vec3 from = centroid(top.face);
+    d.ring_facets(top.face, around);
+    for (const Facet& t : around) {
+      EdgeId pair[3];
+      if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) continue;
+      const EdgeId next = pair[0] == top.face ? pair[1] : pair[0];
+      if (d.label(next) != label) continue;
+      push(top.distance + (centroid(next) - from).norm(), next, top.fin);
+    }
+  }
+  const int fin_label = next_label++;
+  for (const auto& [f, is_fin] : owner) {
+    if (!is_fin) continue;
+    d.set_label(f, fin_label);
+    d.ring_facets(f, around);
+    for (const Facet& t : around) {
+      EdgeId pair[3];
+      if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) continue;
+      const EdgeId other = pair[0] == f ? pair[1] : pair[0];
+      const auto it = owner.find(other);
+      if (it != owner.end() && it->second) continue;  // inside the fin's region
+      d.set_forced(t, true);
+      ++report.forced_edges;
+    }
+  }
 }
 
 void Engine::split_problematic() {
@@ -88,7 +169,7 @@ void Engine::split_problematic() {
   };
 
   std::vector<Facet> found = collect();
-  report.problematic_edges += found.size();
+  report.problematic_edges = found.size();
   for (int round = 0; round < 32 && !found.empty(); ++round) {
     if (check_cancelled) check_cancelled();
     bool progress = false;
@@ -161,8 +242,8 @@ void Engine::split_problematic() {
     }
     found = again;
   }
-  // Fallback: isolate the face with the largest id at each remaining problematic edge (all
-  // edges of a round at once, then one relabelling).
+  // Fallback: split each remaining problematic edge by competing fronts (split_fin), all edges
+  // of a round at once, then one relabelling.
   for (int round = 0; round < 100 && !found.empty(); ++round) {
     if (check_cancelled) check_cancelled();
     std::vector<int> labels;
@@ -170,18 +251,8 @@ void Engine::split_problematic() {
       if (!problematic(f)) continue;
       EdgeId faces[3];
       facet_faces(d, f, faces);
-      const EdgeId lone = std::max({faces[0], faces[1], faces[2]});
-      labels.push_back(d.label(lone));
-      std::vector<Facet> ring;
-      d.ring_facets(lone, ring);
-      for (const Facet& t : ring)
-        if (d.degree(t) == 2 && !d.forced(t)) {
-          d.set_forced(t, true);
-          ++report.forced_edges;
-        }
-      // Give the lone face its own label now so that the next problematic edge of this round
-      // sees the split.
-      d.set_label(lone, next_label++);
+      labels.push_back(d.label(faces[0]));
+      split_fin(f);
     }
     std::sort(labels.begin(), labels.end());
     labels.erase(std::unique(labels.begin(), labels.end()), labels.end());

@@ -83,8 +83,18 @@ class Engine {
   // --- problematic.cpp ----------------------------------------------------------------------
   void split_problematic();
   bool problematic(const Facet& f) const;
+  /// Per-face scratch of split_fin, reused across calls (stamped, so nothing is cleared).
+  struct FinScratch {
+    std::vector<std::uint32_t> stamp;
+    std::vector<double> best;
+    std::vector<char> settled;
+    std::vector<Vec3> centroid;  ///< NaN until computed; faces do not change during §4.7
+    std::uint32_t current = 0;
+    std::vector<CellId> ring;
+    std::vector<Facet> facets;
+  };
   /// Cuts the fin of a problematic edge off its sheet (forced edges, a new label).
-  void split_fin(const Facet& edge);
+  void split_fin(const Facet& edge, FinScratch& scratch);
 
   // --- state --------------------------------------------------------------------------------
   Dual& d;

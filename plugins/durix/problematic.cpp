@@ -8,6 +8,7 @@
 #include "engine.hpp"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 
@@ -36,14 +37,13 @@ bool Engine::problematic(const Facet& f) const {
   return l >= 0 && d.label(faces[1]) == l && d.label(faces[2]) == l;
 }
 
-void Engine::split_fin(const Facet& edge) {
+void Engine::split_fin(const Facet& edge, FinScratch& scratch) {
   // The fin is the face at the edge whose plane is least parallel to the other two (a Voronoi
   // face lies in the bisector plane of its DT edge); the other two continue the sheet through
   // the edge. Fronts grow from the fin and from the two others at once over the sheet's regular
   // edges (Dijkstra on polygon centroid distances); a face belongs to the front that reaches it
-  // first. The regular edges between the fin's region and the rest become forced singular, and
-  // the region gets a new label: a piece of several faces that the next passes can test against
-  // ε, where isolating one face would leave a one-polygon sheet.
+  // first, and the growth stops when the fin's front is spent. The regular edges between the
+  // fin's region and the rest become forced singular, and the region gets a new label.
   EdgeId faces[3];
   facet_faces(d, edge, faces);
   const int label = d.label(faces[0]);
@@ -57,12 +57,31 @@ void Engine::split_fin(const Facet& edge) {
     const double p = std::abs(normal(faces[(i + 1) % 3]).dot(normal(faces[(i + 2) % 3])));
     if (p > most_parallel) most_parallel = p, fin = i;
   }
-  std::vector<CellId> ring;
-  const auto centroid = [&](EdgeId f) {
-    d.ring(f, ring);
-    Vec3 c = Vec3::Zero();
-    for (CellId cell : ring) c += d.centre(cell);
-    return Vec3(c / double(ring.size()));
+
+  FinScratch& z = scratch;
+  if (z.stamp.size() != d.num_edges()) {
+    z.stamp.assign(d.num_edges(), 0);
+    z.best.assign(d.num_edges(), 0);
+    z.settled.assign(d.num_edges(), 0);
+    z.centroid.assign(d.num_edges(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    z.current = 0;
+  }
+  ++z.current;  // faces whose stamp differs were not reached in this call
+  const auto centroid = [&](EdgeId f) -> const Vec3& {
+    Vec3& c = z.centroid[f];
+    if (std::isnan(c.x())) {
+      d.ring(f, z.ring);
+      c = Vec3::Zero();
+      for (CellId cell : z.ring) c += d.centre(cell);
+      c /= double(z.ring.size());
+    }
+    return c;
+  };
+  // The other face across a regular edge of the sheet, or kNoId.
+  const auto across = [&](const Facet& t, EdgeId f) -> EdgeId {
+    EdgeId pair[3];
+    if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) return kNoId;
+    return pair[0] == f ? pair[1] : pair[0];
   };
   struct Entry {
     double distance;
@@ -71,45 +90,39 @@ void Engine::split_fin(const Facet& edge) {
     bool operator>(const Entry& o) const { return distance != o.distance ? distance > o.distance : face > o.face; }
   };
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
-  std::map<EdgeId, bool> owner;  // settled faces: true for the fin's region
-  std::map<EdgeId, double> best;
   std::size_t fin_entries = 0;
+  std::vector<EdgeId> fin_region;
+  // settled: 0 open, 1 the fin's region, 2 the rest.
   const auto push = [&](double distance, EdgeId f, bool is_fin) {
-    const auto it = best.find(f);
-    if (owner.count(f) || (it != best.end() && it->second <= distance)) return;
-    best[f] = distance;
+    if (z.stamp[f] == z.current && (z.settled[f] != 0 || z.best[f] <= distance)) return;
+    if (z.stamp[f] != z.current) z.settled[f] = 0;
+    z.stamp[f] = z.current;
+    z.best[f] = distance;
     heap.push({distance, f, is_fin});
     fin_entries += is_fin;
   };
   for (int i = 0; i < 3; ++i) push(0, faces[i], i == fin);
-  std::vector<Facet> around;
   while (!heap.empty() && fin_entries > 0) {
     const Entry top = heap.top();
     heap.pop();
     fin_entries -= top.fin;
-    if (owner.count(top.face) || best[top.face] < top.distance) continue;
-    owner[top.face] = top.fin;
+    if (z.settled[top.face] != 0 || z.best[top.face] < top.distance) continue;
+    z.settled[top.face] = top.fin ? 1 : 2;
+    if (top.fin) fin_region.push_back(top.face);
     const Vec3 from = centroid(top.face);
-    d.ring_facets(top.face, around);
-    for (const Facet& t : around) {
-      EdgeId pair[3];
-      if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) continue;
-      const EdgeId next = pair[0] == top.face ? pair[1] : pair[0];
-      if (d.label(next) != label) continue;
-      push(top.distance + (centroid(next) - from).norm(), next, top.fin);
+    d.ring_facets(top.face, z.facets);
+    for (const Facet& t : z.facets) {
+      const EdgeId next = across(t, top.face);
+      if (next != kNoId && d.label(next) == label) push(top.distance + (centroid(next) - from).norm(), next, top.fin);
     }
   }
   const int fin_label = next_label++;
-  for (const auto& [f, is_fin] : owner) {
-    if (!is_fin) continue;
+  for (EdgeId f : fin_region) {
     d.set_label(f, fin_label);
-    d.ring_facets(f, around);
-    for (const Facet& t : around) {
-      EdgeId pair[3];
-      if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) continue;
-      const EdgeId other = pair[0] == f ? pair[1] : pair[0];
-      const auto it = owner.find(other);
-      if (it != owner.end() && it->second) continue;  // inside the fin's region
+    d.ring_facets(f, z.facets);
+    for (const Facet& t : z.facets) {
+      const EdgeId other = across(t, f);
+      if (other == kNoId || (z.stamp[other] == z.current && z.settled[other] == 1)) continue;
       d.set_forced(t, true);
       ++report.forced_edges;
     }
@@ -244,6 +257,7 @@ void Engine::split_problematic() {
   }
   // Fallback: split each remaining problematic edge by competing fronts (split_fin), all edges
   // of a round at once, then one relabelling.
+  FinScratch fin_scratch;
   for (int round = 0; round < 100 && !found.empty(); ++round) {
     if (check_cancelled) check_cancelled();
     std::vector<int> labels;
@@ -252,7 +266,7 @@ void Engine::split_problematic() {
       EdgeId faces[3];
       facet_faces(d, f, faces);
       labels.push_back(d.label(faces[0]));
-      split_fin(f);
+      split_fin(f, fin_scratch);
     }
     std::sort(labels.begin(), labels.end());
     labels.erase(std::unique(labels.begin(), labels.end()), labels.end());

@@ -248,7 +248,8 @@ TEST_CASE("durix: problematic edges split off fins of several faces, not one she
   // spot (the bundled mesh, 2930 vertices) has about a hundred problematic edges at ε = 1%.
   // Each is resolved by a cut (paper Algorithm 3): none is left, the sheets stay manifold (the
   // invariants), and the pieces are regions, so the sheets are far fewer than the edges
-  // (isolating one face per edge gave 60 sheets for 98 edges, 56 of them one polygon).
+  // (isolating one face per edge, as before, left 60 to 80 sheets for 98 edges, most of one
+  // polygon).
   const SurfaceMesh m = durix::test::to_delaunay(read_mesh(medax::test::source_dir() / "pipelines/meshes/spot.obj"));
   const double eps = 0.01 * bbox_diagonal(m.vertices);
   const DurixResult r = durix_medial_axis(m, EpsilonOracle(eps));

@@ -27,6 +27,12 @@ int facet_faces(const Dual& d, const Facet& t, EdgeId out[3]) {
   return n;
 }
 
+/// The two faces of a regular medial edge that a cut may force (degree 2, not forced yet);
+/// false for any other facet.
+bool regular_faces(const Dual& d, const Facet& t, EdgeId out[3]) {
+  return d.is_medial_edge(t) && d.degree(t) == 2 && !d.forced(t) && facet_faces(d, t, out) == 2;
+}
+
 }  // namespace
 
 bool Engine::problematic(const Facet& f) const {
@@ -80,7 +86,7 @@ void Engine::split_fin(const Facet& edge, FinScratch& scratch) {
   // The other face across a regular edge of the sheet, or kNoId.
   const auto across = [&](const Facet& t, EdgeId f) -> EdgeId {
     EdgeId pair[3];
-    if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t) || facet_faces(d, t, pair) != 2) return kNoId;
+    if (!regular_faces(d, t, pair)) return kNoId;
     return pair[0] == f ? pair[1] : pair[0];
   };
   struct Entry {
@@ -165,10 +171,8 @@ void Engine::split_problematic() {
   };
   // Regular edges of sheet `label` usable by the cut: degree 2, not forced, both faces on it.
   const auto regular_in = [&](const Facet& t, int label) {
-    if (!d.is_medial_edge(t) || d.degree(t) != 2 || d.forced(t)) return false;
     EdgeId f[3];
-    facet_faces(d, t, f);
-    return d.label(f[0]) == label && d.label(f[1]) == label;
+    return regular_faces(d, t, f) && d.label(f[0]) == label && d.label(f[1]) == label;
   };
   const auto on_boundary = [&](CellId c, int label) {
     for (int k = 0; k < 4; ++k) {

@@ -23,6 +23,9 @@ function(medax_add_plugin name)
     add_dependencies(medax_plugins ${target})
   endif()
   if(DEFINED MEDAX_PLUGIN_SUBDIR AND NOT ARG_NO_INSTALL)
+    # Installed plugins sit in <libdir>/medax/plugins and find the kernel libraries two
+    # folders up (the build tree links them by absolute run path).
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/../..")
     install(TARGETS ${target} LIBRARY DESTINATION ${MEDAX_PLUGIN_SUBDIR})
   endif()
 endfunction()

@@ -22,21 +22,22 @@ double enclosed_volume(const medax::SurfaceMesh& mesh) {
 class HelloVolume : public medax::EvaluationStage {
  public:
   static medax::StageInfo describe() {
-    return {"hello_volume",
-            "Sum and largest of the medial sphere volumes, against the enclosed mesh volume",
-            "examples/hello_plugin/README.md",
-            {medax::ParamSpec::real("min_radius", 0.0, "ignore spheres smaller than this")
-                 .at_least(0)
-                 .in_unit("input length")}};
+    return {"hello_volume", "Sum and largest of the medial sphere volumes, against the enclosed mesh volume",
+            "examples/hello_plugin/README.md"};
+  }
+
+  // Each parameter once: its name, the field that holds it (whose initial value is the
+  // default), its doc, then its range and unit.
+  void declare(medax::ParamBinder& p) override {
+    p.add("min_radius", min_radius_, "ignore spheres smaller than this").at_least(0).in_unit("input length");
   }
 
   medax::Metrics evaluate(const medax::Shape& shape, const medax::MedialComplex& medial,
                           medax::Context& ctx) override {
-    const double min_radius = params().real("min_radius");
     double sum = 0, largest = 0;
     std::size_t used = 0;
     for (double r : medial.radii) {
-      if (r < min_radius) continue;
+      if (r < min_radius_) continue;
       const double v = 4.0 / 3.0 * kPi * r * r * r;
       sum += v;
       largest = std::max(largest, v);
@@ -49,6 +50,9 @@ class HelloVolume : public medax::EvaluationStage {
             {"mesh_volume", mesh_volume},
             {"largest_sphere_fraction", mesh_volume > 0 ? largest / mesh_volume : NAN}};
   }
+
+ private:
+  double min_radius_ = 0.0;
 };
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include <medax/kernel/param_table.hpp>
+
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
 #include <medax/kernel/runner.hpp>
@@ -71,7 +73,7 @@ int list_plugins() {
   return registry.errors().empty() ? 0 : 2;
 }
 
-int describe(const std::string& name) {
+int describe(const std::string& name, bool markdown) {
   Registry& registry = Registry::global();
   const RegisteredStage* s = registry.find(name);
   if (!s) {
@@ -82,6 +84,10 @@ int describe(const std::string& name) {
     return 2;
   }
   const StageInfo& info = s->info();
+  if (markdown) {
+    fmt::print("{}", param_block_markdown(info));
+    return 0;
+  }
   fmt::print("{} ({} stage, package {} {})\n  {}\n", info.name, to_string(info.role), s->package->name,
              s->package->version, info.summary);
   if (!info.doc.empty()) fmt::print("  docs: {}\n", info.doc);

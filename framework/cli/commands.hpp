@@ -29,7 +29,8 @@ struct BenchArgs {
 };
 
 int list_plugins();
-int describe(const std::string& name);
+/// Prints a stage's parameters; with `markdown`, the block its docs page embeds.
+int describe(const std::string& name, bool markdown);
 int validate(const RunArgs& args);
 int run(const RunArgs& args);
 /// `run` and `validate` on a pipeline with `sweep:` or `inputs:` (an experiment).

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   std::string name;
   auto* describe = app.add_subcommand("describe", "Print a stage's parameters");
   describe->add_option("NAME", name, "Stage name (see `medax plugins`)")->required();
+  bool markdown = false;
+  describe->add_flag("--markdown", markdown, "Print the parameter block of the stage's docs page");
 
   medax::cli::RunArgs args;
   const auto add_pipeline_options = [&](CLI::App* cmd) {
@@ -46,7 +48,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (plugins->parsed()) return medax::cli::list_plugins();
-  if (describe->parsed()) return medax::cli::describe(name);
+  if (describe->parsed()) return medax::cli::describe(name, markdown);
   if (validate->parsed()) return medax::cli::validate(args);
   if (bench->parsed()) return medax::cli::bench(bench_args);
   return medax::cli::run(args);

@@ -1,5 +1,6 @@
 // Medial complex I/O: the `.ma` text format, PLY with properties, OBJ.
 #include <medax/io.hpp>
+#include <medax/ply.hpp>
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -66,22 +67,6 @@ class LineReader {
   std::size_t line_number_ = 0;
 };
 
-std::string ply_name(std::string name) {
-  for (char& c : name)
-    if (std::isspace(static_cast<unsigned char>(c))) c = '_';
-  return name;
-}
-
-void ply_property_header(std::ostream& out, const ElementProperties& props) {
-  for (const auto& [name, column] : props.fields.all()) fmt::print(out, "property double {}\n", ply_name(name));
-  for (const auto& [name, column] : props.labels.all()) fmt::print(out, "property int {}\n", ply_name(name));
-}
-
-void ply_property_values(std::ostream& out, const ElementProperties& props, std::size_t i) {
-  for (const auto& [name, column] : props.fields.all()) fmt::print(out, " {}", column[i]);
-  for (const auto& [name, column] : props.labels.all()) fmt::print(out, " {}", column[i]);
-}
-
 }  // namespace
 
 MedialComplex read_ma(const fs::path& path) {
@@ -135,32 +120,15 @@ void write_ma(const fs::path& path, const MedialComplex& mc) {
 }
 
 void write_medial_ply(const fs::path& path, const MedialComplex& mc) {
-  write_file_atomic(path, [&](std::ostream& out) {
-    out << "ply\nformat ascii 1.0\ncomment medax medial complex\n";
-    fmt::print(out, "element vertex {}\n", mc.centres.size());
-    out << "property double x\nproperty double y\nproperty double z\nproperty double radius\n";
-    ply_property_header(out, mc.vertex_props);
-    fmt::print(out, "element edge {}\nproperty int vertex1\nproperty int vertex2\n", mc.edges.size());
-    ply_property_header(out, mc.edge_props);
-    fmt::print(out, "element face {}\nproperty list uchar int vertex_indices\n", mc.faces.size());
-    ply_property_header(out, mc.face_props);
-    out << "end_header\n";
-    for (std::size_t i = 0; i < mc.centres.size(); ++i) {
-      fmt::print(out, "{} {} {} {}", mc.centres[i].x(), mc.centres[i].y(), mc.centres[i].z(), mc.radii[i]);
-      ply_property_values(out, mc.vertex_props, i);
-      out << '\n';
-    }
-    for (std::size_t i = 0; i < mc.edges.size(); ++i) {
-      fmt::print(out, "{} {}", mc.edges[i][0], mc.edges[i][1]);
-      ply_property_values(out, mc.edge_props, i);
-      out << '\n';
-    }
-    for (std::size_t i = 0; i < mc.faces.size(); ++i) {
-      fmt::print(out, "3 {} {} {}", mc.faces[i][0], mc.faces[i][1], mc.faces[i][2]);
-      ply_property_values(out, mc.face_props, i);
-      out << '\n';
-    }
-  });
+  PlyElement vertex("vertex", mc.centres.size());
+  vertex.positions(mc.centres).real("radius", [&mc](std::size_t i) { return mc.radii[i]; }).properties(mc.vertex_props);
+  PlyElement edge("edge", mc.edges.size());
+  edge.integer("vertex1", [&mc](std::size_t i) { return mc.edges[i][0]; })
+      .integer("vertex2", [&mc](std::size_t i) { return mc.edges[i][1]; })
+      .properties(mc.edge_props);
+  PlyElement face("face", mc.faces.size());
+  face.triangles(mc.faces).properties(mc.face_props);
+  write_file_atomic(path, [&](std::ostream& out) { write_ply(out, "medax medial complex", {vertex, edge, face}); });
 }
 
 void write_medial_obj(const fs::path& path, const MedialComplex& mc) {

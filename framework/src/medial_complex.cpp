@@ -20,7 +20,21 @@ std::size_t MedialComplex::size(Element e) const {
 Index MedialComplex::add_vertex(const Vec3& centre, double radius) {
   centres.push_back(centre);
   radii.push_back(radius);
+  vertex_props.grow();
+  if (!generators.empty() || !generator_kind.empty()) generators.resize(centres.size());
   return static_cast<Index>(centres.size() - 1);
+}
+
+Index MedialComplex::add_edge(Index a, Index b) {
+  edges.push_back({a, b});
+  edge_props.grow();
+  return static_cast<Index>(edges.size() - 1);
+}
+
+Index MedialComplex::add_face(Index a, Index b, Index c) {
+  faces.push_back({a, b, c});
+  face_props.grow();
+  return static_cast<Index>(faces.size() - 1);
 }
 
 ElementProperties& MedialComplex::props(Element e) {
@@ -35,20 +49,56 @@ const ElementProperties& MedialComplex::props(Element e) const {
   throw std::logic_error("unknown element kind");
 }
 
+MedialComplex MedialComplex::subcomplex(const std::vector<Index>& vertices, const std::vector<Index>& edge_rows,
+                                        const std::vector<Index>& face_rows) const {
+  constexpr Index kDropped = static_cast<Index>(-1);
+  std::vector<Index> renumber(num_vertices(), kDropped);
+  for (std::size_t k = 0; k < vertices.size(); ++k) renumber[vertices[k]] = static_cast<Index>(k);
+  auto vertex = [&](Index v) {
+    if (renumber[v] == kDropped)
+      throw std::invalid_argument(fmt::format("subcomplex: vertex {} is used but not kept", v));
+    return renumber[v];
+  };
+  MedialComplex out;
+  out.generator_kind = generator_kind;
+  for (Index v : vertices) {
+    out.centres.push_back(centres[v]);
+    out.radii.push_back(radii[v]);
+    if (!generators.empty()) out.generators.push_back(generators[v]);
+  }
+  for (Index e : edge_rows) out.edges.push_back({vertex(edges[e][0]), vertex(edges[e][1])});
+  for (Index f : face_rows) out.faces.push_back({vertex(faces[f][0]), vertex(faces[f][1]), vertex(faces[f][2])});
+  out.vertex_props = vertex_props;
+  out.vertex_props.select(vertices);
+  out.edge_props = edge_props;
+  out.edge_props.select(edge_rows);
+  out.face_props = face_props;
+  out.face_props.select(face_rows);
+  return out;
+}
+
 std::size_t MedialComplex::close_edges() {
-  std::vector<Segment> all;
+  // Every edge as (i < j) with the row it came from; face sides come as fresh rows and sort
+  // after an existing row of the same edge, so unique() keeps the existing one.
+  std::vector<std::pair<Segment, Index>> all;
   all.reserve(edges.size() + 3 * faces.size());
   auto sorted = [](Index a, Index b) { return a < b ? Segment{a, b} : Segment{b, a}; };
-  for (const Segment& e : edges) all.push_back(sorted(e[0], e[1]));
+  for (Index e = 0; e < edges.size(); ++e) all.push_back({sorted(edges[e][0], edges[e][1]), e});
   for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) all.push_back(sorted(f[k], f[(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k) all.push_back({sorted(f[k], f[(k + 1) % 3]), kFreshRow});
   std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
+  all.erase(std::unique(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+            all.end());
   const std::size_t before = edges.size();
-  if (all != edges) {
-    edges = std::move(all);
-    edge_props = {};
+  std::vector<Segment> next;
+  std::vector<Index> rows;
+  for (const auto& [edge, row] : all) {
+    next.push_back(edge);
+    rows.push_back(row);
   }
+  if (next == edges) return 0;
+  edges = std::move(next);
+  edge_props.select(rows);
   return edges.size() > before ? edges.size() - before : 0;
 }
 

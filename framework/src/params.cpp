@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,45 +21,11 @@ std::string_view to_string(ParamType type) {
 }
 
 namespace {
-ParamSpec make(std::string name, ParamType type, ParamValue def, std::string doc) {
-  ParamSpec s;
-  s.name = std::move(name);
-  s.type = type;
-  s.default_value = std::move(def);
-  s.doc = std::move(doc);
-  return s;
-}
-
 std::string number_text(double v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{}", v);
 }
 }  // namespace
-
-ParamSpec ParamSpec::boolean(std::string name, bool def, std::string doc) {
-  return make(std::move(name), ParamType::Bool, def, std::move(doc));
-}
-ParamSpec ParamSpec::integer(std::string name, long long def, std::string doc) {
-  return make(std::move(name), ParamType::Int, def, std::move(doc));
-}
-ParamSpec ParamSpec::real(std::string name, double def, std::string doc) {
-  return make(std::move(name), ParamType::Real, def, std::move(doc));
-}
-ParamSpec ParamSpec::text(std::string name, std::string def, std::string doc) {
-  return make(std::move(name), ParamType::String, std::move(def), std::move(doc));
-}
-ParamSpec ParamSpec::choice(std::string name, std::string def, std::vector<std::string> choices,
-                            std::string doc) {
-  ParamSpec s = make(std::move(name), ParamType::Choice, std::move(def), std::move(doc));
-  s.choices = std::move(choices);
-  return s;
-}
-ParamSpec ParamSpec::stage(std::string name, Role role, std::string default_plugin,
-                           std::string doc) {
-  ParamSpec s = make(std::move(name), ParamType::Stage, std::move(default_plugin), std::move(doc));
-  s.stage_role = role;
-  return s;
-}
 
 std::string ParamSpec::default_text() const {
   return std::visit(
@@ -92,38 +59,40 @@ const ParamValue& ParamSet::at(const std::string& name) const {
   return it->second;
 }
 
-namespace {
-template <typename T>
-const T& typed(const ParamSet& set, const std::string& name, const char* type) {
-  const ParamValue& v = set.at(name);
-  if (const T* p = std::get_if<T>(&v)) return *p;
-  throw std::runtime_error(fmt::format("parameter '{}' is not of type {}", name, type));
-}
-}  // namespace
-
-bool ParamSet::boolean(const std::string& name) const { return typed<bool>(*this, name, "bool"); }
-long long ParamSet::integer(const std::string& name) const {
-  return typed<long long>(*this, name, "int");
-}
-double ParamSet::real(const std::string& name) const {
-  const ParamValue& v = at(name);
-  if (const long long* i = std::get_if<long long>(&v)) return static_cast<double>(*i);
-  return typed<double>(*this, name, "real");
-}
-const std::string& ParamSet::text(const std::string& name) const {
-  return typed<std::string>(*this, name, "string");
-}
-const StageRef& ParamSet::stage_ref(const std::string& name) const {
-  const auto& ref = typed<std::shared_ptr<StageRef>>(*this, name, "stage");
-  if (!ref) throw std::runtime_error("parameter '" + name + "' has no stage");
-  return *ref;
+ParamSpec& ParamBinder::bind(ParamSpec spec, Writer write) {
+  if (writers_.count(spec.name))
+    throw std::logic_error(fmt::format("parameter '{}' is declared twice", spec.name));
+  writers_.emplace(spec.name, std::move(write));
+  specs_.push_back(std::move(spec));
+  return specs_.back();
 }
 
-ParamSet default_params(const std::vector<ParamSpec>& specs) {
-  ParamSet set;
-  for (const ParamSpec& spec : specs)
-    if (spec.type != ParamType::Stage) set.set(spec.name, spec.default_value);
-  return set;
+ParamSpec& ParamBinder::add(std::string name, std::string& field, std::vector<std::string> choices,
+                            std::string doc) {
+  ParamSpec spec;
+  spec.name = std::move(name);
+  spec.type = ParamType::Choice;
+  spec.doc = std::move(doc);
+  if (std::find(choices.begin(), choices.end(), field) == choices.end())
+    throw std::logic_error(fmt::format("parameter '{}': default '{}' is not one of its choices", spec.name, field));
+  spec.default_value = field;
+  spec.choices = std::move(choices);
+  return bind(std::move(spec), [&field](const ParamValue& v) { field = std::get<std::string>(v); });
 }
+
+void ParamBinder::apply(const ParamSet& values) const {
+  for (const auto& [name, value] : values.all()) {
+    auto it = writers_.find(name);
+    if (it == writers_.end()) throw std::logic_error(fmt::format("no parameter named '{}'", name));
+    it->second(value);
+  }
+}
+
+namespace detail {
+void throw_empty_slot() { throw std::logic_error("a stage parameter was used before a stage was given to it"); }
+void throw_wrong_stage(const std::string& plugin) {
+  throw std::invalid_argument(fmt::format("stage '{}' is not of the kind this parameter needs", plugin));
+}
+}  // namespace detail
 
 }  // namespace medax

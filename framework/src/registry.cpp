@@ -8,6 +8,8 @@
 #include <boost/dll/shared_library.hpp>
 #include <fmt/format.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <set>
@@ -60,14 +62,28 @@ void Registry::load_directory(const fs::path& dir) {
   }
 }
 
+namespace {
+/// The dynamic loader's own words on why `file` does not load (Boost.DLL reports only an errno
+/// text such as "Bad file descriptor"): usually which library it needs and cannot find.
+std::string loader_message(const fs::path& file) {
+  void* handle = ::dlopen(file.c_str(), RTLD_LAZY | RTLD_LOCAL);
+  if (handle) {
+    ::dlclose(handle);
+    return "unknown reason";
+  }
+  const char* why = ::dlerror();
+  return why ? why : "unknown reason";
+}
+}  // namespace
+
 bool Registry::load_file(const fs::path& file) {
   const std::string where = fmt::format("plugin {}", file.string());
   auto library = std::make_unique<boost::dll::shared_library>();
   boost::dll::fs::error_code ec;
   library->load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
   if (ec) {
-    errors_.push_back(fmt::format("{}: cannot be loaded ({}); rebuild it or remove it from the plugin path",
-                                  where, ec.message()));
+    errors_.push_back(fmt::format("{}: cannot be loaded: {}; rebuild it or remove it from the plugin path", where,
+                                  loader_message(file)));
     return false;
   }
   if (!library->has("medax_plugin_entry")) {

@@ -37,14 +37,15 @@ void install_interrupt_handler() { std::signal(SIGINT, on_interrupt); }
 bool interrupt_requested() { return g_interrupted.load(std::memory_order_relaxed); }
 
 RunContext::RunContext(std::shared_ptr<spdlog::logger> logger, std::string stage_id, std::uint64_t seed,
-                       std::filesystem::path out_dir)
+                       std::filesystem::path out_dir, SceneData& data)
     : logger_(std::move(logger)),
       stage_id_(std::move(stage_id)),
       seed_(seed),
       rng_(seed),
       out_dir_(std::move(out_dir)),
       last_progress_(std::chrono::steady_clock::now()),
-      terminal_(::isatty(STDERR_FILENO) != 0) {}
+      terminal_(::isatty(STDERR_FILENO) != 0),
+      data_(data) {}
 
 RunContext::~RunContext() {
   if (progress_shown_ && terminal_) std::fprintf(stderr, "\r\033[K");

@@ -20,7 +20,7 @@ bool interrupt_requested();
 class RunContext : public Context {
  public:
   RunContext(std::shared_ptr<spdlog::logger> logger, std::string stage_id, std::uint64_t seed,
-             std::filesystem::path out_dir);
+             std::filesystem::path out_dir, SceneData& data);
   ~RunContext() override;
 
   void info(std::string_view message) override;
@@ -31,6 +31,8 @@ class RunContext : public Context {
   std::uint64_t seed() const override { return seed_; }
   std::filesystem::path write_output(const std::string& name,
                                      const std::function<void(std::ostream&)>& body) override;
+  const std::string& stage_id() const override { return stage_id_; }
+  SceneData& data() override { return data_; }
 
  private:
   std::shared_ptr<spdlog::logger> logger_;
@@ -41,6 +43,7 @@ class RunContext : public Context {
   std::chrono::steady_clock::time_point last_progress_;
   bool progress_shown_ = false;
   bool terminal_;
+  SceneData& data_;
 };
 
 }  // namespace medax::detail

@@ -74,6 +74,10 @@ void write_outputs(const PipelineConfig& config, const Scene& scene, const fs::p
       log.info("wrote surface.{}", ext);
     }
   }
+  for (const SceneData::Output& output : scene.data.outputs()) {
+    write_file_atomic(dir / output.file, output.write);
+    log.info("wrote {}", output.file);
+  }
   detail::write_json_file(dir / "metrics.json", metrics_json(scene));
 }
 
@@ -116,14 +120,14 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       // Work on a copy, so a stage that fails half-way leaves the last complete state behind.
       Scene work = scene;
       stage.instance->prepare(work);
-      detail::RunContext ctx(log, stage.id, detail::stage_seed(config.seed, stage.id), options.out_dir);
+      detail::RunContext ctx(log, stage.id, detail::stage_seed(config.seed, stage.id), options.out_dir, work.data);
       stage.instance->run(work, ctx);
       if (work.medial) work.medial->validate();
       scene = std::move(work);
       timing.ok = true;
     } catch (const std::exception& e) {
       result.failed_stage = stage.id;
-      result.error = e.what();
+      result.error = fmt::format("{}: {}", stage.id, e.what());
     }
     timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timing.peak_memory_mib = read_peak_memory_mib();

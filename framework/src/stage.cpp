@@ -14,8 +14,26 @@ SimplificationStage::~SimplificationStage() = default;
 ConnectivityStage::~ConnectivityStage() = default;
 EvaluationStage::~EvaluationStage() = default;
 
+void Stage::declare(ParamBinder&) {}
 void Stage::check_params() const {}
-void Stage::prepare(const Scene&) const {}
+void Stage::check_scene(const Scene&) const {}
+
+void Stage::configure(const ParamSet& values) {
+  ParamBinder binder;
+  declare(binder);
+  binder.apply(values);
+}
+
+std::vector<ParamSpec> Stage::param_specs() {
+  ParamBinder binder;
+  declare(binder);
+  return {binder.specs().begin(), binder.specs().end()};
+}
+
+void Stage::prepare(const Scene& scene) const {
+  check_role(scene);
+  check_scene(scene);
+}
 
 namespace {
 void require_medial(const Scene& scene, Role role) {
@@ -26,24 +44,22 @@ void require_medial(const Scene& scene, Role role) {
 }
 }  // namespace
 
+void ConditioningStage::check_role(const Scene&) const {}
 void ConditioningStage::run(Scene& scene, Context& ctx) { condition(scene.shape, ctx); }
 
+void ExtractionStage::check_role(const Scene&) const {}
 void ExtractionStage::run(Scene& scene, Context& ctx) { scene.medial = extract(scene.shape, ctx); }
 
-void SignificanceStage::prepare(const Scene& scene) const { require_medial(scene, kRole); }
+void SignificanceStage::check_role(const Scene& scene) const { require_medial(scene, kRole); }
 void SignificanceStage::run(Scene& scene, Context& ctx) { measure(scene.shape, *scene.medial, ctx); }
 
-void SimplificationStage::prepare(const Scene& scene) const { require_medial(scene, kRole); }
-void SimplificationStage::run(Scene& scene, Context& ctx) {
-  simplify(scene.shape, *scene.medial, ctx);
-}
+void SimplificationStage::check_role(const Scene& scene) const { require_medial(scene, kRole); }
+void SimplificationStage::run(Scene& scene, Context& ctx) { simplify(scene.shape, *scene.medial, ctx); }
 
-void ConnectivityStage::prepare(const Scene& scene) const { require_medial(scene, kRole); }
+void ConnectivityStage::check_role(const Scene& scene) const { require_medial(scene, kRole); }
 void ConnectivityStage::run(Scene& scene, Context& ctx) { connect(scene.shape, *scene.medial, ctx); }
 
-void EvaluationStage::prepare(const Scene& scene) const { require_medial(scene, kRole); }
-void EvaluationStage::run(Scene& scene, Context& ctx) {
-  scene.metrics[id()] = evaluate(scene.shape, *scene.medial, ctx);
-}
+void EvaluationStage::check_role(const Scene& scene) const { require_medial(scene, kRole); }
+void EvaluationStage::run(Scene& scene, Context& ctx) { scene.metrics[id()] = evaluate(scene.shape, *scene.medial, ctx); }
 
 }  // namespace medax

@@ -14,97 +14,94 @@ namespace {
 
 using namespace medax;
 
+/// Where the Delaunay points come from.
+enum class Points { Auto, Vertices, Samples };
+
 class DeyZhaoStage : public ExtractionStage {
  public:
   static StageInfo describe() {
     return {"dey_zhao",
             "Medial axis as the Voronoi facets whose dual Delaunay edges pass the Angle or Ratio condition "
             "(Dey & Zhao 2004)",
-            "docs/plugins/dey_zhao.md",
-            {ParamSpec::choice("points", "auto", {"auto", "vertices", "samples"},
-                               "Delaunay of the oriented samples (from a `sample` stage) or of the mesh vertices; "
-                               "auto: the samples when there are some"),
-             ParamSpec::boolean("angle_condition", true, "select edges by the Angle condition [theta]"),
-             ParamSpec::real("theta", dey_zhao::kPi / 8,
-                             "Angle condition: the edge makes more than theta with every umbrella triangle at one "
-                             "end (paper: pi/8)")
-                 .range(0, dey_zhao::kPi / 2)
-                 .in_unit("rad"),
-             ParamSpec::boolean("ratio_condition", true, "select edges by the Ratio condition [rho]"),
-             ParamSpec::real("rho", 8.0,
-                             "Ratio condition: the edge is longer than rho times every umbrella circumradius at one "
-                             "end (paper: 8)")
-                 .at_least(0)
-                 .in_unit("ratio"),
-             ParamSpec::choice("inner", "auto", {"auto", "delaunay_surface", "mesh", "normals", "none"},
-                               "which facets are inner: mesh triangles that are Delaunay facets (flood fill, as the "
-                               "paper), a closed mesh (edge midpoint inside, edge not crossing it), outward "
-                               "normals, or none (inner and outer axis); auto: the first that applies"),
-             ParamSpec::choice("unbounded", "drop", {"drop", "clip"},
-                               "facets dual to convex-hull edges are unbounded: drop them, or clip their rays"),
-             ParamSpec::real("clip_factor", 2.0, "unbounded: clip: length of the clipped rays")
-                 .at_least(0)
-                 .in_unit("bbox diagonal"),
-             ParamSpec::real("merge_tolerance", 1e-12,
-                             "facet vertices closer than this are one vertex (cospherical points)")
-                 .at_least(0)
-                 .in_unit("bbox diagonal")}};
+            "docs/plugins/dey_zhao.md"};
+  }
+
+  void declare(ParamBinder& p) override {
+    using dey_zhao::InnerSelection;
+    p.add("points", points_, {{"auto", Points::Auto}, {"vertices", Points::Vertices}, {"samples", Points::Samples}},
+          "Delaunay of the oriented samples (from a `sample` stage) or of the mesh vertices; auto: the samples when "
+          "there are some");
+    p.add("angle_condition", options_.angle_condition, "select edges by the Angle condition [theta]");
+    p.add("theta", options_.theta,
+          "Angle condition: the edge makes more than theta with every umbrella triangle at one end (paper: pi/8)")
+        .range(0, dey_zhao::kPi / 2)
+        .in_unit("rad");
+    p.add("ratio_condition", options_.ratio_condition, "select edges by the Ratio condition [rho]");
+    p.add("rho", options_.rho,
+          "Ratio condition: the edge is longer than rho times every umbrella circumradius at one end (paper: 8)")
+        .at_least(0)
+        .in_unit("ratio");
+    p.add("inner", options_.inner,
+          {{"auto", InnerSelection::Auto},
+           {"delaunay_surface", InnerSelection::DelaunaySurface},
+           {"mesh", InnerSelection::Mesh},
+           {"normals", InnerSelection::Normals},
+           {"none", InnerSelection::None}},
+          "which facets are inner: mesh triangles that are Delaunay facets (flood fill, as the paper), a closed mesh "
+          "(edge midpoint inside, edge not crossing it), outward normals, or none (inner and outer axis); auto: the "
+          "first that applies");
+    p.add("unbounded", options_.unbounded, {{"drop", dey_zhao::Unbounded::Drop}, {"clip", dey_zhao::Unbounded::Clip}},
+          "facets dual to convex-hull edges are unbounded: drop them, or clip their rays");
+    p.add("clip_factor", options_.clip_factor, "unbounded: clip: length of the clipped rays")
+        .at_least(0)
+        .in_unit("bbox diagonal");
+    p.add("merge_tolerance", options_.merge_tolerance, "facet vertices closer than this are one vertex (cospherical points)")
+        .at_least(0)
+        .in_unit("bbox diagonal");
   }
 
   void check_params() const override {
-    if (!params().boolean("angle_condition") && !params().boolean("ratio_condition"))
-      throw std::invalid_argument("dey_zhao: `angle_condition` and `ratio_condition` are both false, so no facet "
-                                  "can be selected; enable at least one");
-    if (params().text("unbounded") == "clip" && !(params().real("clip_factor") > 0))
-      throw std::invalid_argument("dey_zhao: `unbounded: clip` needs `clip_factor` > 0");
+    if (!options_.angle_condition && !options_.ratio_condition)
+      throw std::invalid_argument("`angle_condition` and `ratio_condition` are both false, so no facet can be "
+                                  "selected; enable at least one");
+    if (options_.unbounded == dey_zhao::Unbounded::Clip && !(options_.clip_factor > 0))
+      throw std::invalid_argument("`unbounded: clip` needs `clip_factor` > 0");
   }
 
-  void prepare(const Scene& scene) const override { check(scene.shape); }
+  void check_scene(const Scene& scene) const override { check(scene.shape); }
 
+ private:
   bool use_samples(const Shape& shape) const {
-    const std::string& points = params().text("points");
-    return points == "samples" || (points == "auto" && !shape.samples.empty());
+    return points_ == Points::Samples || (points_ == Points::Auto && !shape.samples.empty());
   }
 
   /// Refuses, with what to do, data this stage cannot work on.
   void check(const Shape& shape) const {
-    const std::string& inner = params().text("inner");
+    using dey_zhao::InnerSelection;
     if (use_samples(shape)) {
       if (shape.samples.empty())
-        throw std::invalid_argument("dey_zhao: `points: samples` but the shape has no samples; add a `sample` "
-                                    "stage before it, or use `points: vertices`");
-      if (shape.samples.size() < 4)
-        throw std::invalid_argument("dey_zhao: fewer than 4 samples");
-      if (inner == "delaunay_surface")
-        throw std::invalid_argument("dey_zhao: `inner: delaunay_surface` needs the mesh vertices as the points "
+        throw std::invalid_argument("`points: samples` but the shape has no samples; add a `sample` stage before it, "
+                                    "or use `points: vertices`");
+      if (shape.samples.size() < 4) throw std::invalid_argument("fewer than 4 samples");
+      if (options_.inner == InnerSelection::DelaunaySurface)
+        throw std::invalid_argument("`inner: delaunay_surface` needs the mesh vertices as the points "
                                     "(`points: vertices`); with samples use `inner: mesh` or `normals`");
     } else if (shape.mesh.vertices.size() < 4) {
-      throw std::invalid_argument("dey_zhao: the shape has no surface mesh (at least 4 vertices) and no samples to "
-                                  "take the Delaunay tetrahedralization of");
+      throw std::invalid_argument("the shape has no surface mesh (at least 4 vertices) and no samples to take the "
+                                  "Delaunay tetrahedralization of");
     }
-    if ((inner == "mesh" || inner == "delaunay_surface") && shape.mesh.empty())
-      throw std::invalid_argument("dey_zhao: `inner: " + inner + "` needs a surface mesh; use `inner: normals` "
-                                  "or `none`");
+    if ((options_.inner == InnerSelection::Mesh || options_.inner == InnerSelection::DelaunaySurface) &&
+        shape.mesh.empty())
+      throw std::invalid_argument(fmt::format("`inner: {}` needs a surface mesh; use `inner: normals` or `none`",
+                                              dey_zhao::to_string(options_.inner)));
   }
 
+ public:
   MedialComplex extract(const Shape& shape, Context& ctx) override {
     check_params();
     check(shape);
     const bool samples = use_samples(shape);
-    dey_zhao::MedialOptions options;
-    options.angle_condition = params().boolean("angle_condition");
-    options.theta = params().real("theta");
-    options.ratio_condition = params().boolean("ratio_condition");
-    options.rho = params().real("rho");
-    const std::string& inner = params().text("inner");
-    options.inner = inner == "delaunay_surface" ? dey_zhao::InnerSelection::DelaunaySurface
-                    : inner == "mesh"           ? dey_zhao::InnerSelection::Mesh
-                    : inner == "normals"        ? dey_zhao::InnerSelection::Normals
-                    : inner == "none"           ? dey_zhao::InnerSelection::None
-                                                : dey_zhao::InnerSelection::Auto;
-    options.unbounded = params().text("unbounded") == "clip" ? dey_zhao::Unbounded::Clip : dey_zhao::Unbounded::Drop;
-    options.clip_factor = params().real("clip_factor");
-    options.merge_tolerance = params().real("merge_tolerance");
+    dey_zhao::MedialOptions options = options_;
     options.generator_kind = samples ? "sample" : "mesh_vertex";
 
     dey_zhao::MedialInput input;
@@ -123,12 +120,7 @@ class DeyZhaoStage : public ExtractionStage {
     if (!shape.mesh.empty()) input.mesh = &shape.mesh;
 
     dey_zhao::MedialReport report;
-    MedialComplex medial;
-    try {
-      medial = dey_zhao::medial_axis(input, options, &report);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string("dey_zhao: ") + e.what());
-    }
+    MedialComplex medial = dey_zhao::medial_axis(input, options, &report);
     ctx.info(fmt::format("{} {} points, {} Delaunay cells, {} Delaunay edges; {} points on the hull, {} empty "
                          "umbrellas",
                          report.points, samples ? "sample" : "vertex", report.cells, report.delaunay_edges,
@@ -147,10 +139,14 @@ class DeyZhaoStage : public ExtractionStage {
                          report.seconds_delaunay, report.seconds_filtering(), report.seconds_umbrellas,
                          report.seconds_filter, report.seconds_inner, report.seconds_complex));
     if (report.empty_umbrellas)
-      ctx.warn(fmt::format("dey_zhao: {} points have an empty umbrella and select nothing", report.empty_umbrellas));
-    if (medial.faces.empty()) ctx.warn("dey_zhao: no facet was selected; the complex is empty");
+      ctx.warn(fmt::format("{} points have an empty umbrella and select nothing", report.empty_umbrellas));
+    if (medial.faces.empty()) ctx.warn("no facet was selected; the complex is empty");
     return medial;
   }
+
+ private:
+  Points points_ = Points::Auto;
+  dey_zhao::MedialOptions options_;  // every field but generator_kind and parallel is a parameter
 };
 
 }  // namespace

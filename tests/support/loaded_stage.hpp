@@ -23,12 +23,12 @@ struct LoadedStage {
     stage = registry.find(name);
     REQUIRE(stage);
   }
-  /// A configured instance with the defaults and `changes`.
+  /// An instance at its declared defaults, with `changes` applied.
   std::unique_ptr<RoleStage> create(const std::map<std::string, ParamValue>& changes = {}) const {
     std::unique_ptr<Stage> s = registry.create(name);
     auto* typed = dynamic_cast<RoleStage*>(s.get());
     REQUIRE(typed);
-    ParamSet params = default_params(stage->info().params);
+    ParamSet params;
     for (const auto& [key, value] : changes) params.set(key, value);
     s->configure(params);
     s.release();

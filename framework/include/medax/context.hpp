@@ -1,6 +1,8 @@
 #pragma once
 // What the kernel gives a running stage: logging, progress, a seeded RNG, cancellation, and a
 // place to write extra outputs.
+#include <medax/scene_data.hpp>
+
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -42,13 +44,24 @@ class Context {
   /// Returns the final path. Without a run folder (library use) the call is a no-op.
   virtual std::filesystem::path write_output(const std::string& name,
                                              const std::function<void(std::ostream&)>& body) = 0;
+
+  /// The id of the running stage (its plugin name unless the pipeline gives `id`).
+  virtual const std::string& stage_id() const = 0;
+  /// The scene's typed data (scene_data.hpp): what earlier stages published, and where this
+  /// stage publishes its own.
+  virtual SceneData& data() = 0;
+  /// Publishes `value` under `key` as this stage.
+  template <typename T>
+  void publish(const DataKey<T>& key, T value) {
+    data().publish(key, std::move(value), stage_id());
+  }
 };
 
 /// A context for using stages from C++ directly (tests, scripts): logs to stderr when
-/// `verbose`, never cancels, writes no outputs.
+/// `verbose`, never cancels, writes no outputs, keeps its own scene data.
 class BasicContext : public Context {
  public:
-  explicit BasicContext(std::uint64_t seed = 0, bool verbose = false);
+  explicit BasicContext(std::uint64_t seed = 0, bool verbose = false, std::string stage_id = "stage");
   void info(std::string_view message) override;
   void warn(std::string_view message) override;
   void progress(double, std::string_view) override {}
@@ -59,11 +72,15 @@ class BasicContext : public Context {
                                      const std::function<void(std::ostream&)>&) override {
     return {};
   }
+  const std::string& stage_id() const override { return stage_id_; }
+  SceneData& data() override { return data_; }
 
  private:
   std::uint64_t seed_;
   bool verbose_;
   std::mt19937_64 rng_;
+  std::string stage_id_;
+  SceneData data_;
 };
 
 }  // namespace medax

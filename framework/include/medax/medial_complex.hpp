@@ -2,6 +2,9 @@
 // The medial complex: medial spheres (centre, radius) joined by edges and triangles. It may be
 // non-manifold (an edge can bound three or more triangles), so it is a plain indexed structure;
 // adjacency is built on demand by the algorithms that need it.
+//
+// The element vectors are open for reading and in-place edits; grow the complex with add_*()
+// and shrink it with subcomplex(), which keep every property column and the generators in step.
 #include <medax/geometry.hpp>
 #include <medax/properties.hpp>
 
@@ -9,8 +12,6 @@
 #include <vector>
 
 namespace medax {
-
-enum class Element { Vertex, Edge, Face };
 
 struct MedialComplex {
   std::vector<Vec3> centres;
@@ -28,16 +29,44 @@ struct MedialComplex {
   std::size_t num_vertices() const { return centres.size(); }
   std::size_t size(Element e) const;
 
+  /// Each adds one element and one row to every column of its kind (set to the column's
+  /// initial value); add_vertex adds an empty generator list when there is a correspondence.
   Index add_vertex(const Vec3& centre, double radius);
-  void add_edge(Index a, Index b) { edges.push_back({a, b}); }
-  void add_face(Index a, Index b, Index c) { faces.push_back({a, b, c}); }
+  Index add_edge(Index a, Index b);
+  Index add_face(Index a, Index b, Index c);
 
   ElementProperties& props(Element e);
   const ElementProperties& props(Element e) const;
 
+  /// Adds a column for `p`, every row set to `init`, and returns it (replaces one of that name).
+  template <typename T>
+  std::vector<T>& add(const Property<T>& p, T init = T{}) {
+    return props(p.element).template map<T>().add(p.name, size(p.element), init);
+  }
+  template <typename T>
+  bool has(const Property<T>& p) const {
+    return props(p.element).template map<T>().has(p.name);
+  }
+  /// The column of `p`; throws std::out_of_range naming it when there is none.
+  template <typename T>
+  const std::vector<T>& get(const Property<T>& p) const {
+    return props(p.element).template map<T>().get(p.name);
+  }
+  template <typename T>
+  std::vector<T>& get(const Property<T>& p) {
+    return props(p.element).template map<T>().get(p.name);
+  }
+
+  /// The complex made of the listed vertices, edges and faces (indices into this complex, kept
+  /// in the order given), vertices renumbered. Every property column and the generators follow
+  /// their elements. Throws std::invalid_argument when a kept edge or face uses a vertex that
+  /// is not kept.
+  MedialComplex subcomplex(const std::vector<Index>& vertices, const std::vector<Index>& edges,
+                           const std::vector<Index>& faces) const;
+
   /// Adds every face edge that is missing from `edges`, and sorts/dedups edges (each stored as
-  /// i < j). Edge properties are dropped when edges change, since their rows would no longer
-  /// match. Returns the number of edges added.
+  /// i < j). Columns of edges that were there follow them; added edges get each column's
+  /// initial value (of duplicate edges, the first keeps its row). Returns the number added.
   std::size_t close_edges();
 
   /// Throws std::runtime_error describing the first inconsistency: index out of range,

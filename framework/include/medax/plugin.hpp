@@ -6,8 +6,9 @@
 //     registrar.add<MySignificance>();
 //   }
 //
-// Each stage class derives from one role interface (stage.hpp) and has
-// `static medax::StageInfo describe();`.
+// Each stage class derives from one role interface (stage.hpp), has
+// `static medax::StageInfo describe();` (name, summary, docs page) and declares its parameters
+// in `declare()` (params.hpp).
 #include <medax/stage.hpp>
 #include <medax/version.hpp>
 
@@ -20,6 +21,17 @@ namespace medax {
 
 using StageFactory = std::function<std::unique_ptr<Stage>()>;
 
+/// Everything `medax describe` shows of a stage class: its describe(), its role, and the
+/// parameters a fresh instance declares.
+template <typename StageT>
+StageInfo stage_info() {
+  static_assert(std::is_base_of_v<Stage, StageT>, "a stage derives from a role interface");
+  StageInfo info = StageT::describe();
+  info.role = StageT::kRole;
+  info.params = StageT().param_specs();
+  return info;
+}
+
 struct StageEntry {
   StageInfo info;
   StageFactory create;
@@ -30,10 +42,7 @@ class PluginRegistrar {
  public:
   template <typename StageT>
   void add() {
-    static_assert(std::is_base_of_v<Stage, StageT>, "a stage derives from a role interface");
-    StageInfo info = StageT::describe();
-    info.role = StageT::kRole;
-    entries_.push_back({std::move(info), [] { return std::make_unique<StageT>(); }});
+    entries_.push_back({stage_info<StageT>(), [] { return std::make_unique<StageT>(); }});
   }
   const std::vector<StageEntry>& entries() const { return entries_; }
 

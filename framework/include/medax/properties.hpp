@@ -1,12 +1,31 @@
 #pragma once
 // Named per-element properties, in the spirit of OpenMesh's dynamic properties: each name maps
-// to one value per element. Ordered by name so that output files are deterministic.
+// to one value per element. Ordered by name so that output files are deterministic. Each column
+// remembers the value it was created with, which fills the rows of elements added later.
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace medax {
+
+using Index = std::uint32_t;  // as in geometry.hpp
+
+enum class Element { Vertex, Edge, Face };
+
+/// In a row selection (PropertyMap::select), a new row set to the column's initial value.
+inline constexpr Index kFreshRow = static_cast<Index>(-1);
+
+/// A typed handle to one column: which elements, which name. T is double (a field) or int (a
+/// label). Declare it once (`inline const Property<double> kEt{Element::Vertex, "et"};`) and use
+/// it everywhere, instead of repeating the string.
+template <typename T>
+struct Property {
+  Element element;
+  std::string name;
+};
 
 template <typename T>
 class PropertyMap {
@@ -15,6 +34,7 @@ class PropertyMap {
 
   /// Adds (or replaces) a property with `size` values set to `init`; returns it for filling.
   Column& add(const std::string& name, std::size_t size, T init = T{}) {
+    inits_[name] = init;
     auto& column = columns_[name];
     column.assign(size, init);
     return column;
@@ -28,14 +48,41 @@ class PropertyMap {
   Column& get(const std::string& name) {
     return const_cast<Column&>(static_cast<const PropertyMap&>(*this).get(name));
   }
-  void erase(const std::string& name) { columns_.erase(name); }
-  void clear() { columns_.clear(); }
+  void erase(const std::string& name) {
+    columns_.erase(name);
+    inits_.erase(name);
+  }
+  void clear() {
+    columns_.clear();
+    inits_.clear();
+  }
   bool empty() const { return columns_.empty(); }
   const std::map<std::string, Column>& all() const { return columns_; }
   std::map<std::string, Column>& all() { return columns_; }
 
+  /// Appends one row to every column, set to the column's initial value.
+  void grow() {
+    for (auto& [name, column] : columns_) column.push_back(initial(name));
+  }
+  /// Rebuilds every column from `rows`: row k becomes old row rows[k], or the column's initial
+  /// value where rows[k] is kFreshRow.
+  void select(const std::vector<Index>& rows) {
+    for (auto& [name, column] : columns_) {
+      Column next;
+      next.reserve(rows.size());
+      for (Index i : rows) next.push_back(i == kFreshRow ? initial(name) : column[i]);
+      column = std::move(next);
+    }
+  }
+
  private:
+  T initial(const std::string& name) const {
+    auto it = inits_.find(name);
+    return it == inits_.end() ? T{} : it->second;
+  }
+
   std::map<std::string, Column> columns_;
+  std::map<std::string, T> inits_;
 };
 
 /// Scalar fields (significance, distances) and integer labels (sheet id, path type) of one
@@ -43,6 +90,26 @@ class PropertyMap {
 struct ElementProperties {
   PropertyMap<double> fields;
   PropertyMap<int> labels;
+
+  void grow() {
+    fields.grow();
+    labels.grow();
+  }
+  void select(const std::vector<Index>& keep) {
+    fields.select(keep);
+    labels.select(keep);
+  }
+  bool empty() const { return fields.empty() && labels.empty(); }
+  template <typename T>
+  PropertyMap<T>& map() {
+    if constexpr (std::is_same_v<T, double>) return fields;
+    else return labels;
+  }
+  template <typename T>
+  const PropertyMap<T>& map() const {
+    if constexpr (std::is_same_v<T, double>) return fields;
+    else return labels;
+  }
 };
 
 }  // namespace medax

@@ -6,6 +6,7 @@
 #include <medax/metrics.hpp>
 #include <medax/params.hpp>
 #include <medax/role.hpp>
+#include <medax/scene_data.hpp>
 #include <medax/surface.hpp>
 
 #include <optional>
@@ -19,6 +20,7 @@ struct Scene {
   Shape shape;
   std::optional<MedialComplex> medial;
   std::map<std::string, Metrics> metrics;  ///< per evaluation stage id
+  SceneData data;                          ///< typed payloads stages pass on (scene_data.hpp)
 };
 
 /// Self-description of a stage: shown by `medax plugins` / `medax describe`, used to validate.
@@ -26,7 +28,7 @@ struct StageInfo {
   std::string name;     ///< unique across all plugins, e.g. "voronoi"
   std::string summary;  ///< one line
   std::string doc;      ///< docs page, e.g. "docs/plugins/voronoi.md"
-  std::vector<ParamSpec> params;
+  std::vector<ParamSpec> params;  ///< filled in by the registrar from the stage's declare()
   Role role = Role::Extraction;  ///< filled in by the registrar from the interface
 };
 
@@ -34,9 +36,15 @@ class Stage {
  public:
   virtual ~Stage();
 
-  /// Called once with the validated parameters before any run.
-  void configure(ParamSet params) { params_ = std::move(params); }
-  const ParamSet& params() const { return params_; }
+  /// Binds each parameter to the field that holds it (params.hpp). Default: no parameters.
+  virtual void declare(ParamBinder& params);
+  /// Writes validated values into the bound fields; parameters not in `values` keep their value
+  /// (so a stage built in a test runs at its defaults without configure()).
+  void configure(const ParamSet& values);
+  /// The declared parameters, with the current field values as defaults (the declared defaults
+  /// on a fresh stage).
+  std::vector<ParamSpec> param_specs();
+
   /// The stage's id in the pipeline (its plugin name unless the YAML gives `id`).
   void set_id(std::string id) { id_ = std::move(id); }
   const std::string& id() const { return id_; }
@@ -45,14 +53,21 @@ class Stage {
   /// other): called when the pipeline is validated, before anything runs. Throw
   /// std::invalid_argument saying what to do. Default: nothing to check.
   virtual void check_params() const;
-  /// Checks the parameters against the data before any work (throw std::invalid_argument with
-  /// what to do). Default: nothing to check.
-  virtual void prepare(const Scene& scene) const;
+  /// Checks the scene before any work: first the role's own needs (a medial complex for all but
+  /// conditioning and extraction), then the stage's check_scene(). Throws std::invalid_argument.
+  void prepare(const Scene& scene) const;
   /// Runs the stage on the scene; the role interfaces below implement it.
   virtual void run(Scene& scene, Context& ctx) = 0;
 
+ protected:
+  /// The stage's own checks of the data against its parameters (throw std::invalid_argument with
+  /// what to do). Default: nothing to check.
+  virtual void check_scene(const Scene& scene) const;
+
  private:
-  ParamSet params_;
+  /// What the role itself needs of the scene; each role interface implements it once.
+  virtual void check_role(const Scene& scene) const = 0;
+
   std::string id_;
 };
 
@@ -63,6 +78,9 @@ class ConditioningStage : public Stage {
   ~ConditioningStage() override;
   virtual void condition(Shape& shape, Context& ctx) = 0;
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 /// Extraction: computes a medial complex from the shape.
@@ -72,6 +90,9 @@ class ExtractionStage : public Stage {
   ~ExtractionStage() override;
   virtual MedialComplex extract(const Shape& shape, Context& ctx) = 0;
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 /// Significance: adds a named scalar field to the complex's elements.
@@ -80,8 +101,10 @@ class SignificanceStage : public Stage {
   static constexpr Role kRole = Role::Significance;
   ~SignificanceStage() override;
   virtual void measure(const Shape& shape, MedialComplex& medial, Context& ctx) = 0;
-  void prepare(const Scene& scene) const override;
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 /// Simplification: replaces the complex with a smaller one.
@@ -90,8 +113,10 @@ class SimplificationStage : public Stage {
   static constexpr Role kRole = Role::Simplification;
   ~SimplificationStage() override;
   virtual void simplify(const Shape& shape, MedialComplex& medial, Context& ctx) = 0;
-  void prepare(const Scene& scene) const override;
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 /// Connectivity: builds edges/triangles, labels, sheets or paths on the complex's spheres.
@@ -100,8 +125,10 @@ class ConnectivityStage : public Stage {
   static constexpr Role kRole = Role::Connectivity;
   ~ConnectivityStage() override;
   virtual void connect(const Shape& shape, MedialComplex& medial, Context& ctx) = 0;
-  void prepare(const Scene& scene) const override;
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 /// Evaluation: measures the complex against the shape.
@@ -110,9 +137,11 @@ class EvaluationStage : public Stage {
   static constexpr Role kRole = Role::Evaluation;
   ~EvaluationStage() override;
   virtual Metrics evaluate(const Shape& shape, const MedialComplex& medial, Context& ctx) = 0;
-  void prepare(const Scene& scene) const override;
   /// Stores the metrics under the stage's id.
   void run(Scene& scene, Context& ctx) final;
+
+ private:
+  void check_role(const Scene& scene) const final;
 };
 
 }  // namespace medax

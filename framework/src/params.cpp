@@ -59,6 +59,28 @@ const ParamValue& ParamSet::at(const std::string& name) const {
   return it->second;
 }
 
+namespace {
+template <typename T>
+const T& typed(const ParamSet& set, const std::string& name, const char* type) {
+  const ParamValue& v = set.at(name);
+  if (const T* p = std::get_if<T>(&v)) return *p;
+  throw std::runtime_error(fmt::format("parameter '{}' is not of type {}", name, type));
+}
+}  // namespace
+
+bool ParamSet::boolean(const std::string& name) const { return typed<bool>(*this, name, "bool"); }
+long long ParamSet::integer(const std::string& name) const { return typed<long long>(*this, name, "int"); }
+double ParamSet::real(const std::string& name) const {
+  if (const long long* i = std::get_if<long long>(&at(name))) return static_cast<double>(*i);
+  return typed<double>(*this, name, "real");
+}
+const std::string& ParamSet::text(const std::string& name) const { return typed<std::string>(*this, name, "string"); }
+const StageRef& ParamSet::stage_ref(const std::string& name) const {
+  const auto& ref = typed<std::shared_ptr<StageRef>>(*this, name, "stage");
+  if (!ref) throw std::runtime_error("parameter '" + name + "' has no stage");
+  return *ref;
+}
+
 ParamSpec& ParamBinder::bind(ParamSpec spec, Writer write) {
   if (writers_.count(spec.name))
     throw std::logic_error(fmt::format("parameter '{}' is declared twice", spec.name));

@@ -36,7 +36,7 @@ TEST_CASE("override --set changes a given or a default parameter", "[pipeline][o
   CHECK(changed.stages[0].params.real("factor") == 3.5);
   CHECK(changed.stages[2].params.text("element") == "edges");
   // The instance is configured with the overridden value too.
-  CHECK(changed.stages[0].instance->params().real("factor") == 3.5);
+  CHECK(medax::test::bound_value(*changed.stages[0].instance, "factor") == "3.5");
 }
 
 TEST_CASE("override --set addresses a stage by its id not its plugin name", "[pipeline][overrides]") {

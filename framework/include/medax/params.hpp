@@ -57,9 +57,15 @@ struct ParamSpec {
 };
 
 /// Resolved parameter values of a stage, by name: what the pipeline validated and what
-/// `config.resolved.yaml` records.
+/// `config.resolved.yaml` records. Stages never read these: their bound fields hold the values.
 class ParamSet {
  public:
+  bool boolean(const std::string& name) const;
+  long long integer(const std::string& name) const;
+  double real(const std::string& name) const;  ///< also reads Int values
+  const std::string& text(const std::string& name) const;  ///< String and Choice
+  const StageRef& stage_ref(const std::string& name) const;
+
   bool has(const std::string& name) const { return values_.count(name) != 0; }
   void set(const std::string& name, ParamValue v) { values_[name] = std::move(v); }
   const ParamValue& at(const std::string& name) const;

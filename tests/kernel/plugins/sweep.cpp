@@ -13,27 +13,32 @@ namespace {
 class TestCrash : public EvaluationStage {
  public:
   static StageInfo describe() {
-    return {"test_crash", "Abort the process when asked (sweep test stage)", "",
-            {ParamSpec::boolean("crash", false, "call std::abort")}};
+    return {"test_crash", "Abort the process when asked (sweep test stage)", ""};
   }
+  void declare(ParamBinder& p) override { p.add("crash", crash_, "call std::abort"); }
   Metrics evaluate(const Shape&, const MedialComplex&, Context&) override {
-    if (params().boolean("crash")) std::abort();
+    if (crash_) std::abort();
     return {{"survived", 1.0}};
   }
+
+ private:
+  bool crash_ = false;
 };
 
 /// Sleeps, so a job can outlive its time limit.
 class TestSleep : public EvaluationStage {
  public:
   static StageInfo describe() {
-    return {"test_sleep", "Sleep for a while (sweep test stage)", "",
-            {ParamSpec::real("seconds", 0.0, "how long to sleep").range(0, 3600).in_unit("s")}};
+    return {"test_sleep", "Sleep for a while (sweep test stage)", ""};
   }
+  void declare(ParamBinder& p) override { p.add("seconds", seconds_, "how long to sleep").range(0, 3600).in_unit("s"); }
   Metrics evaluate(const Shape&, const MedialComplex&, Context&) override {
-    const double s = params().real("seconds");
-    std::this_thread::sleep_for(std::chrono::duration<double>(s));
-    return {{"slept", s}};
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds_));
+    return {{"slept", seconds_}};
   }
+
+ private:
+  double seconds_ = 0.0;
 };
 
 }  // namespace

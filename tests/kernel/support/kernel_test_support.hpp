@@ -30,6 +30,15 @@ inline const Registry& good_registry() {
   return *registry;
 }
 
+/// The value a configured stage holds for parameter `name`, as `medax describe` writes it
+/// (param_specs() reports the bound fields' current values).
+inline std::string bound_value(Stage& stage, const std::string& name) {
+  for (const ParamSpec& spec : stage.param_specs())
+    if (spec.name == name) return spec.default_text();
+  FAIL("the stage has no parameter " << name);
+  return {};
+}
+
 inline std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   REQUIRE(in);

@@ -6,15 +6,9 @@
 
 namespace medax::conditioning {
 
-NormalizeMode parse_normalize_mode(const std::string& text) {
-  if (text == "diagonal") return NormalizeMode::Diagonal;
-  if (text == "max_side") return NormalizeMode::MaxSide;
-  throw std::invalid_argument("normalize: mode must be diagonal or max_side, not '" + text + "'");
-}
-
 Normalization compute_normalization(const Shape& shape, NormalizeMode mode) {
   const std::vector<Vec3>& points = shape.mesh.vertices.empty() ? shape.samples.points : shape.mesh.vertices;
-  if (points.empty()) throw std::invalid_argument("normalize: the shape has no vertices and no samples");
+  if (points.empty()) throw std::invalid_argument("the shape has no vertices and no samples");
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Vec3 extent = hi - lo;
@@ -22,7 +16,7 @@ Normalization compute_normalization(const Shape& shape, NormalizeMode mode) {
   n.centre = 0.5 * (lo + hi);
   n.size = mode == NormalizeMode::Diagonal ? extent.norm() : extent.maxCoeff();
   if (!(n.size > 0) || !std::isfinite(n.size))
-    throw std::invalid_argument("normalize: the shape's bounding box has no extent (all points coincide)");
+    throw std::invalid_argument("the shape's bounding box has no extent (all points coincide)");
   return n;
 }
 

@@ -3,6 +3,8 @@
 #include <medax/surface.hpp>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace medax::conditioning {
 
@@ -10,9 +12,9 @@ enum class NormalizeMode {
   Diagonal,  ///< the bounding-box diagonal becomes 1
   MaxSide,   ///< the longest bounding-box side becomes 1
 };
-
-/// Parses "diagonal" or "max_side"; throws std::invalid_argument otherwise.
-NormalizeMode parse_normalize_mode(const std::string& text);
+/// The name of each mode, as the `normalize` stage's `mode` parameter spells it.
+inline const std::vector<std::pair<std::string, NormalizeMode>> kNormalizeModes{{"diagonal", NormalizeMode::Diagonal},
+                                                                                {"max_side", NormalizeMode::MaxSide}};
 
 /// The normalisation x -> (x - centre) / size.
 struct Normalization {

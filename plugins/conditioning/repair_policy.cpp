@@ -51,7 +51,7 @@ RepairDecision decide_repair(const services::RepairResult& result, const service
 
   const std::string name = source.empty() ? "the mesh" : std::filesystem::path(source).filename().string();
   std::string& text = decision.refusal;
-  text = "repair: refusing " + name +
+  text = "refusing " + name +
          ": the medial axis needs a closed, manifold, outward-oriented surface free of self-intersections.";
   const auto before = result.before.problems();
   bool input_blocking = false;

@@ -7,25 +7,15 @@
 
 namespace medax::conditioning {
 
-SampleMethod parse_sample_method(const std::string& text) {
-  if (text == "uniform") return SampleMethod::Uniform;
-  if (text == "poisson") return SampleMethod::Poisson;
-  if (text == "vertices") return SampleMethod::Vertices;
-  throw std::invalid_argument("sample: method must be uniform, poisson or vertices, not '" + text + "'");
-}
-
 OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& settings, std::mt19937_64& rng) {
-  if (mesh.empty()) throw std::invalid_argument("sample: the shape has no surface mesh to sample");
+  if (mesh.empty()) throw std::invalid_argument("the shape has no surface mesh to sample");
   switch (settings.method) {
     case SampleMethod::Uniform:
       return services::sample_uniform(mesh, settings.count, rng);
-    case SampleMethod::Poisson: {
-      services::PoissonDiskOptions options;
-      options.oversampling = settings.oversampling;
-      options.normal_angle_deg = settings.normal_angle_deg;
-      return settings.min_distance > 0 ? services::sample_poisson_radius(mesh, settings.min_distance, rng, options)
-                                       : services::sample_poisson_count(mesh, settings.count, rng, options);
-    }
+    case SampleMethod::Poisson:
+      return settings.min_distance > 0
+                 ? services::sample_poisson_radius(mesh, settings.min_distance, rng, settings.poisson)
+                 : services::sample_poisson_count(mesh, settings.count, rng, settings.poisson);
     case SampleMethod::Vertices: {
       // Vertices used by no face (or only by zero-area faces) have no normal: leave them out.
       const OrientedSamples all = services::vertex_samples(mesh);
@@ -36,11 +26,11 @@ OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& se
         used.normals.push_back(all.normals[i]);
         used.areas.push_back(all.areas[i]);
       }
-      if (used.empty()) throw std::invalid_argument("sample: the mesh has zero area");
+      if (used.empty()) throw std::invalid_argument("the mesh has zero area");
       return used;
     }
   }
-  throw std::logic_error("sample: unknown method");
+  throw std::logic_error("unknown sampling method");
 }
 
 }  // namespace medax::conditioning

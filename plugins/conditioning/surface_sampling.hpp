@@ -1,24 +1,26 @@
 #pragma once
 // The `sample` stage's algorithm choice: uniform, Poisson-disk (by count or by radius) or the
 // mesh vertices, all with outward unit normals and areas summing to the surface area.
+#include <medax/services/poisson.hpp>
 #include <medax/surface.hpp>
 
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace medax::conditioning {
 
 enum class SampleMethod { Uniform, Poisson, Vertices };
-
-/// Parses "uniform", "poisson" or "vertices"; throws std::invalid_argument otherwise.
-SampleMethod parse_sample_method(const std::string& text);
+/// The name of each method, as the `sample` stage's `method` parameter spells it.
+inline const std::vector<std::pair<std::string, SampleMethod>> kSampleMethods{
+    {"poisson", SampleMethod::Poisson}, {"uniform", SampleMethod::Uniform}, {"vertices", SampleMethod::Vertices}};
 
 struct SampleSettings {
   SampleMethod method = SampleMethod::Poisson;
-  std::size_t count = 10000;        ///< uniform, and poisson when min_distance is 0
-  double min_distance = 0;          ///< poisson: > 0 samples by radius instead of by count
-  double oversampling = 5;          ///< poisson: candidates per sample
-  double normal_angle_deg = 120;    ///< poisson: samples with normals this far apart never repel
+  std::size_t count = 10000;  ///< uniform, and poisson when min_distance is 0
+  double min_distance = 0;    ///< poisson: > 0 samples by radius instead of by count
+  services::PoissonDiskOptions poisson;  ///< poisson: oversampling, normal angle
 };
 
 /// Throws std::invalid_argument for an empty or zero-area mesh.

@@ -30,7 +30,7 @@ int bench(const BenchArgs& args) {
     std::filesystem::remove_all(scratch);
     const RunResult result = run_pipeline(config, RunOptions{scratch, true});
     if (!result.ok) {
-      fmt::print(stderr, "error: stage '{}' failed: {}\n", result.failed_stage, result.error);
+      fmt::print(stderr, "error: {}\n", result.error);
       std::filesystem::remove_all(scratch);
       return 1;
     }

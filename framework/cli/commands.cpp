@@ -125,8 +125,7 @@ int run(const RunArgs& args) {
   options.quiet = args.quiet;
   const RunResult result = run_pipeline(*config, options);
   if (!result.ok) {
-    fmt::print(stderr, "error: stage '{}' failed: {}\n(see {}/log.txt)\n", result.failed_stage, result.error,
-               result.out_dir.string());
+    fmt::print(stderr, "error: {}\n(see {}/log.txt)\n", result.error, result.out_dir.string());
     return 1;
   }
   fmt::print("results: {}\n", std::filesystem::absolute(result.out_dir).lexically_normal().string());

@@ -2,6 +2,7 @@
 // with file:line:column and what to do, before any work starts.
 #include <medax/kernel/pipeline.hpp>
 
+#include "diagnostics.hpp"
 #include "suggest.hpp"
 
 #include <fmt/format.h>
@@ -25,52 +26,7 @@ const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
 const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};
 const std::vector<std::string> kSurfaceFormats{"off", "obj", "ply", "stl"};
 
-/// Collects diagnostics against one file; nodes from --set carry their own origin.
-class Checker {
- public:
-  explicit Checker(std::string file) : file_(std::move(file)) {}
-
-  void error(const YAML::Node& at, std::string message) {
-    Diagnostic d{file_, 0, 0, std::move(message)};
-    for (const auto& [node, where] : overridden_)
-      if (node.is(at)) {
-        d.file = where;  // a value given with --set has no position in the file
-        diagnostics_.push_back(std::move(d));
-        return;
-      }
-    if (at.IsDefined() && !at.Mark().is_null()) {
-      d.line = at.Mark().line + 1;
-      d.column = at.Mark().column + 1;
-    }
-    diagnostics_.push_back(std::move(d));
-  }
-  void mark_overridden(const YAML::Node& node, std::string where) {
-    overridden_.emplace_back(node, std::move(where));
-  }
-  void error_at(const std::string& where, std::string message) {
-    diagnostics_.push_back(Diagnostic{where, 0, 0, std::move(message)});
-  }
-  bool ok() const { return diagnostics_.empty(); }
-  std::vector<Diagnostic> take() { return std::move(diagnostics_); }
-  const std::string& file() const { return file_; }
-
-  void unknown_keys(const YAML::Node& map, const std::vector<std::string>& known, const char* what) {
-    for (const auto& kv : map) {
-      const std::string key = kv.first.Scalar();  // empty for a non-scalar key: reported below
-      if (std::find(known.begin(), known.end(), key) == known.end())
-        error(kv.first, fmt::format("unknown {} key '{}'{}; known keys: {}", what, key,
-                                    detail::did_you_mean(detail::closest_names(key, known)),
-                                    fmt::join(known, ", ")));
-    }
-  }
-
- private:
-  std::string file_;
-  std::vector<std::pair<YAML::Node, std::string>> overridden_;
-  std::vector<Diagnostic> diagnostics_;
-};
-
-std::optional<std::string> scalar(Checker& check, const YAML::Node& node, const char* what) {
+std::optional<std::string> scalar(detail::Diagnostics& check, const YAML::Node& node, const char* what) {
   if (!node.IsScalar()) {
     check.error(node, fmt::format("{} must be a single value", what));
     return std::nullopt;
@@ -108,7 +64,7 @@ std::optional<bool> parse_bool(const std::string& s) {
 
 class Validator {
  public:
-  Validator(Checker& check, const Registry& registry) : check_(check), registry_(registry) {}
+  Validator(detail::Diagnostics& check, const Registry& registry) : check_(check), registry_(registry) {}
 
   /// Validates a stage entry (map with plugin/id/params, or a bare plugin name for nested
   /// stages) and creates its configured instance. Returns nullopt when invalid.
@@ -270,7 +226,7 @@ class Validator {
     return std::nullopt;
   }
 
-  Checker& check_;
+  detail::Diagnostics& check_;
   const Registry& registry_;
 };
 
@@ -280,7 +236,7 @@ fs::path resolve_path(const fs::path& base_dir, const std::string& text) {
   return fs::absolute(p).lexically_normal();
 }
 
-void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& check) {
+void apply_overrides(YAML::Node& root, const Overrides& overrides, detail::Diagnostics& check) {
   for (const std::string& setting : overrides.settings) {
     const std::string where = fmt::format("{} {}", overrides.origin, setting);
     const auto eq = setting.find('=');
@@ -337,7 +293,7 @@ void apply_overrides(YAML::Node& root, const Overrides& overrides, Checker& chec
   }
 }
 
-std::vector<std::string> formats(Checker& check, const YAML::Node& node, const std::vector<std::string>& allowed,
+std::vector<std::string> formats(detail::Diagnostics& check, const YAML::Node& node, const std::vector<std::string>& allowed,
                                  const char* what) {
   std::vector<std::string> out;
   const auto add = [&](const YAML::Node& n) {
@@ -355,7 +311,7 @@ std::vector<std::string> formats(Checker& check, const YAML::Node& node, const s
 
 namespace {
 PipelineConfig load_checked(const fs::path& file, const Registry& registry, const Overrides& overrides) {
-  Checker check(file.string());
+  detail::Diagnostics check(file.string());
   if (!fs::exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
   YAML::Node root;
   try {

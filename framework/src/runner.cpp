@@ -114,6 +114,7 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   for (const StageConfig& stage : config.stages) {
     StageTiming timing{stage.id, stage.plugin};
+    std::string message;
     reset_peak_memory();
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -127,13 +128,14 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       timing.ok = true;
     } catch (const std::exception& e) {
       result.failed_stage = stage.id;
-      result.error = fmt::format("{}: {}", stage.id, e.what());
+      message = e.what();
+      result.error = fmt::format("{}: {}", stage.id, message);  // the stage's words, under its id
     }
     timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timing.peak_memory_mib = read_peak_memory_mib();
     timings.push_back(timing);
     if (!timing.ok) {
-      log->error("stage '{}' ({}) failed after {:.3f} s: {}", stage.id, stage.plugin, timing.seconds, result.error);
+      log->error("stage '{}' ({}) failed after {:.3f} s: {}", stage.id, stage.plugin, timing.seconds, message);
       break;
     }
     log->info("stage '{}' ({}) done in {:.3f} s, peak memory {:.1f} MiB", stage.id, stage.plugin, timing.seconds,

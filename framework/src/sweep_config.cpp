@@ -2,6 +2,8 @@
 // expanding them into jobs.
 #include <medax/kernel/sweep.hpp>
 
+#include "diagnostics.hpp"
+
 #include <fmt/format.h>
 #include <glob.h>
 #include <yaml-cpp/yaml.h>
@@ -15,23 +17,6 @@ namespace medax {
 namespace fs = std::filesystem;
 
 namespace {
-
-class Diagnostics {
- public:
-  explicit Diagnostics(std::string file) : file_(std::move(file)) {}
-  void error(const YAML::Node& at, std::string message) {
-    Diagnostic d{file_, 0, 0, std::move(message)};
-    if (at.IsDefined() && !at.Mark().is_null()) d.line = at.Mark().line + 1, d.column = at.Mark().column + 1;
-    list_.push_back(std::move(d));
-  }
-  void throw_if_any() {
-    if (!list_.empty()) throw PipelineError(std::move(list_));
-  }
-
- private:
-  std::string file_;
-  std::vector<Diagnostic> list_;
-};
 
 std::string yaml_text(const YAML::Node& node) {
   if (node.IsScalar()) return node.Scalar();
@@ -58,7 +43,7 @@ fs::path absolute_from(const fs::path& base, const std::string& text) {
 }
 
 /// One entry of `inputs:`: a path, a glob, or {manifest: FILE} (one path per line, '#' comments).
-void add_inputs(const YAML::Node& node, const fs::path& base, std::vector<fs::path>& inputs, Diagnostics& diag) {
+void add_inputs(const YAML::Node& node, const fs::path& base, std::vector<fs::path>& inputs, detail::Diagnostics& diag) {
   if (node.IsMap() && node["manifest"] && node["manifest"].IsScalar()) {
     const fs::path manifest = absolute_from(base, node["manifest"].Scalar());
     std::ifstream in(manifest);
@@ -102,7 +87,7 @@ SweepAxis plain_axis(const std::string& key, const YAML::Node& values) {
 }
 
 /// `NAME: [{name: a, STAGE.X: v, ...}, ...]`: bundles of settings applied together.
-std::optional<SweepAxis> named_axis(const YAML::Node& key, const YAML::Node& values, Diagnostics& diag) {
+std::optional<SweepAxis> named_axis(const YAML::Node& key, const YAML::Node& values, detail::Diagnostics& diag) {
   SweepAxis axis{key.Scalar(), {}, {}};
   if (!values.IsSequence()) {
     diag.error(values, fmt::format("sweep key '{}' has no dot, so it names a list of bundles like "
@@ -152,7 +137,7 @@ bool is_sweep(const fs::path& pipeline) {
 }
 
 SweepConfig load_sweep(const fs::path& pipeline) {
-  Diagnostics diag(pipeline.string());
+  detail::Diagnostics diag(pipeline.string());
   YAML::Node root;
   try {
     root = YAML::LoadFile(pipeline.string());

@@ -108,7 +108,7 @@ TEST_CASE("medax run with a failing stage exits 1 naming the stage", "[cli]") {
   const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_fail\n"));
   const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() + "' --quiet", kGood, dir);
   CHECK(r.code == 1);
-  CHECK_THAT(r.err, Catch::Contains("error: stage 'test_fail' failed: test_fail failed on purpose"));
+  CHECK_THAT(r.err, Catch::Contains("error: test_fail: test_fail failed on purpose"));
   CHECK(fs::exists(dir / "run" / "medial.ma"));
 }
 

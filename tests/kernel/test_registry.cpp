@@ -28,7 +28,7 @@ TEST_CASE("registry loads every stage of the good package with its package info"
   Registry registry;
   registry.load_directory(plugin_dir("good"));
   REQUIRE(registry.errors().empty());
-  REQUIRE(registry.stages().size() == 7);
+  REQUIRE(registry.stages().size() == 9);
 
   const RegisteredStage* scale = registry.find("test_scale");
   REQUIRE(scale);
@@ -55,9 +55,9 @@ TEST_CASE("registry lists stages ordered by role then name", "[registry]") {
   for (const RegisteredStage* s : registry.stages()) names.push_back(s->info().name);
   CHECK(names == std::vector<std::string>{"test_scale",                                   // conditioning
                                           "test_centroid", "test_oracle_centroid",        // extraction
-                                          "test_radius_field",                            // significance
+                                          "test_publish", "test_radius_field",            // significance
                                           "test_fail",                                    // simplification
-                                          "test_count", "test_random"});                  // evaluation
+                                          "test_consume", "test_count", "test_random"});  // evaluation
 }
 
 TEST_CASE("a plugin with a wrong ABI stamp gives one error line and registers nothing", "[registry]") {
@@ -71,6 +71,7 @@ TEST_CASE("a corrupt .so gives one error line", "[registry]") {
   const std::string error = single_error("corrupt");
   CHECK(contains(error, (plugin_dir("corrupt") / "libmedax_kernel_test_corrupt.so").string()));
   CHECK(contains(error, "cannot be loaded"));
+  CHECK(contains(error, "file too short"));  // the loader's own words, not an errno text
 }
 
 TEST_CASE("a library without medax_plugin_entry gives one error line", "[registry]") {
@@ -109,7 +110,7 @@ TEST_CASE("loading every broken case together gives one error per broken file", 
   for (const char* dir : {"good", "bad_abi", "corrupt", "no_entry", "duplicate"})
     registry.load_directory(plugin_dir(dir));
   CHECK(registry.errors().size() == 4);
-  CHECK(registry.stages().size() == 8);  // 7 good + the duplicate package's own stage
+  CHECK(registry.stages().size() == 10);  // 9 good + the duplicate package's own stage
 }
 
 TEST_CASE("a plugin file in an earlier folder shadows a file of the same name in a later one", "[registry]") {
@@ -119,7 +120,7 @@ TEST_CASE("a plugin file in an earlier folder shadows a file of the same name in
     registry.load_directory(plugin_dir("good"));
     registry.load_directory(plugin_dir("shadow"));
     CHECK(registry.errors().empty());
-    CHECK(registry.stages().size() == 7);
+    CHECK(registry.stages().size() == 9);
     CHECK(registry.find("test_scale")->package->file.parent_path() == plugin_dir("good"));
   }
   SECTION("shadow first: the copy is the one used") {

@@ -112,7 +112,7 @@ TEST_CASE("a failing stage stops the run and earlier outputs remain", "[runner]"
                                      "  - plugin: test_random\n");
   CHECK_FALSE(run.result.ok);
   CHECK(run.result.failed_stage == "boom");
-  CHECK(run.result.error == "planned failure");
+  CHECK(run.result.error == "boom: planned failure");  // under the stage id
 
   // The complex as the extraction left it: the failing stage's partial changes are discarded.
   const MedialComplex medial = read_ma(run.dir / "medial.ma");

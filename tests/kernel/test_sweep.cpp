@@ -77,7 +77,7 @@ TEST_CASE("inputs may be globs and manifests", "[sweep]") {
   const auto config = medax::load_sweep(file);
   std::vector<std::string> names;
   for (const auto& p : config.inputs) names.push_back(p.filename().string());
-  CHECK(names == std::vector<std::string>{"cube.off", "ellipsoid.off", "cube.off", "sphere.obj"});
+  CHECK(names == std::vector<std::string>{"cube.off", "ellipsoid.off", "joint.off", "cube.off", "sphere.obj"});
 }
 
 TEST_CASE("sweep errors are found before any job runs", "[sweep]") {

@@ -21,6 +21,21 @@ cmake --install "$build" --prefix "$prefix" > "$work/install.log" || { cat "$wor
 grep -q "add_library(medax::testing SHARED IMPORTED)" "$prefix/lib/cmake/medax/medaxTargets.cmake" \
   || fail "the installed package has no medax::testing target"
 
+medax=$prefix/bin/medax
+
+# The installed medax loads every built-in plugin: each finds the kernel libraries in the prefix
+# through its run path (the README's install route), with nothing from the build tree.
+MEDAX_PLUGIN_PATH= "$medax" plugins > "$work/plugins.txt" 2> "$work/plugins.err" \
+  || { cat "$work/plugins.err"; fail "the installed medax plugins failed"; }
+[ ! -s "$work/plugins.err" ] || { cat "$work/plugins.err"; fail "the installed medax cannot load its own plugins"; }
+for stage in repair normalize sample voronoi dey_zhao vmas erosion_thickness durix reconstruction; do
+  grep -q "$stage" "$work/plugins.txt" || fail "the installed medax does not list the built-in stage $stage"
+done
+# ... and runs a shipped pipeline with them.
+MEDAX_PLUGIN_PATH= "$medax" run "$source/pipelines/dey_zhao.yaml" --input "$source/tests/data/ellipsoid.off" \
+  --out "$work/run-dey-zhao" --quiet > /dev/null || fail "the installed medax cannot run pipelines/dey_zhao.yaml"
+[ -s "$work/run-dey-zhao/medial.ma" ] || fail "the installed run wrote no medial.ma"
+
 # The example sees only the installed tree: no medax source or build folder on its paths.
 launcher=
 command -v ccache > /dev/null && launcher=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
@@ -30,11 +45,14 @@ cmake -S "$source/examples/hello_plugin" -B "$example" -G Ninja -DCMAKE_BUILD_TY
 cmake --build "$example" -j2 > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "building the example failed"; }
 [ -f "$example/libmedax_hello.so" ] || fail "the example did not produce libmedax_hello.so"
 
-medax=$prefix/bin/medax
-
 # The stage shows up with its documented parameter.
 MEDAX_PLUGIN_PATH=$example "$medax" describe hello_volume > "$work/describe.txt"
 grep -q "min_radius" "$work/describe.txt" || fail "describe hello_volume does not list min_radius"
+# The example's README holds the parameter block its declaration makes.
+MEDAX_PLUGIN_PATH=$example "$medax" describe hello_volume --markdown > "$work/block.md"
+grep -qxFf "$work/block.md" "$source/examples/hello_plugin/README.md" \
+  && [ "$(grep -cxFf "$work/block.md" "$source/examples/hello_plugin/README.md")" -eq "$(wc -l < "$work/block.md")" ] \
+  || { cat "$work/block.md"; fail "examples/hello_plugin/README.md does not hold the current parameter block"; }
 
 # 1. The example's own pipeline (a ready-made medial axis: the unit sphere in the cube [-1,1]^3).
 MEDAX_PLUGIN_PATH=$example "$medax" run "$source/examples/hello_plugin/hello.yaml" --out "$work/run-hello" --quiet \

@@ -257,7 +257,7 @@ class Converter {
     const HD hnew = CGAL::Euler::split_edge(h, mesh_);  // target(hnew) is the new vertex
     const VD v = mesh_.target(hnew);
     mesh_.point(v) = to_point(p);
-    if (v.idx() != id) throw std::logic_error("delaunay_surface: unexpected vertex numbering");
+    if (v.idx() != id) throw std::logic_error("unexpected vertex numbering after a split");
     CGAL::Euler::split_face(hnew, mesh_.next(h), mesh_);
     const HD oh = mesh_.opposite(h);
     CGAL::Euler::split_face(oh, mesh_.next(mesh_.opposite(hnew)), mesh_);
@@ -275,7 +275,7 @@ class Converter {
     const HD hc = CGAL::Euler::add_center_vertex(h, mesh_);
     const VD v = mesh_.target(hc);
     mesh_.point(v) = to_point(p);
-    if (v.idx() != id) throw std::logic_error("delaunay_surface: unexpected vertex numbering");
+    if (v.idx() != id) throw std::logic_error("unexpected vertex numbering after a split");
     ++report_.face_splits;
   }
 

@@ -1,6 +1,7 @@
 #include "dual.hpp"
 
 #include <medax/services/delaunay.hpp>
+#include <medax/union_find.hpp>
 
 #include <algorithm>
 #include <numeric>
@@ -252,7 +253,7 @@ void Dual::ring(EdgeId e, std::vector<CellId>& out) const {
       prev = cur;
       cur = nx;
     }
-    throw std::logic_error("durix: runaway rotation around a Delaunay edge");
+    throw std::logic_error("runaway rotation around a Delaunay edge");
   };
   out.push_back(c0);
   if (walk(0, out)) return;
@@ -283,7 +284,7 @@ void Dual::set_solid(CellId c, bool in) {
   solid_[c] = in;
   for (int p = 0; p < 6; ++p) {
     const EdgeId e = cell_edges_[c][p];
-    if (e == kNoId) throw std::logic_error("durix: a cell without edges changed its solid state");
+    if (e == kNoId) throw std::logic_error("a cell without edges changed its solid state");
     if (in) ++solid_count_[e];
     else --solid_count_[e];
   }
@@ -298,7 +299,7 @@ Facet Dual::facet(CellId c, int k) const {
   if (n == kNoId || c < n) return {c, std::uint8_t(k)};
   for (int j = 0; j < 4; ++j)
     if (nbrs_[n][j] == c) return {n, std::uint8_t(j)};
-  throw std::logic_error("durix: inconsistent cell neighbours");
+  throw std::logic_error("inconsistent cell neighbours");
 }
 
 std::array<Index, 3> Dual::facet_vertices(const Facet& f) const {
@@ -347,7 +348,7 @@ Index Dual::third(const HalfEdge& h) const {
   const auto v = facet_vertices(h.t);
   for (Index x : v)
     if (x != h.u && x != h.v) return x;
-  throw std::logic_error("durix: malformed half-edge");
+  throw std::logic_error("malformed half-edge");
 }
 
 EdgeId Dual::face(const HalfEdge& h) const { return edge_of(h.t.cell, h.u, h.v); }
@@ -383,21 +384,10 @@ HalfEdge Dual::side_nbr(const HalfEdge& h) const {
 }
 
 int Dual::node_components(CellId c) const {
-  int parent[4] = {0, 1, 2, 3};
-  const auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x];
-    return x;
-  };
-  int comps = 4;
-  for (int p = 0; p < 6; ++p) {
-    if (volumetric(cell_edges_[c][p])) continue;
-    const int a = find(kPairVerts[p][0]), b = find(kPairVerts[p][1]);
-    if (a != b) {
-      parent[a] = b;
-      --comps;
-    }
-  }
-  return comps;
+  UnionFind corners(4);
+  for (int p = 0; p < 6; ++p)
+    if (!volumetric(cell_edges_[c][p])) corners.unite(kPairVerts[p][0], kPairVerts[p][1]);
+  return static_cast<int>(corners.count());
 }
 
 std::vector<Facet> Dual::surface_facets() const {

@@ -12,7 +12,9 @@
 #include <medax/medial_complex.hpp>
 #include <medax/surface.hpp>
 
+#include <array>
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +31,18 @@ enum PathType : int {
   kForcedSingular = 4,  ///< degree 2 made singular to split a sheet at problematic edges (§3.8)
   kProblematic = 5,   ///< degree 3 with its three faces on one sheet (left when splitting failed)
 };
+
+/// The label columns of the output complex (docs/plugins/durix.md, Output).
+inline const Property<int> kNodeType{Element::Vertex, "node_type"};  ///< 1 boundary, 2 regular, 3 singular
+inline const Property<int> kNodeSheet{Element::Vertex, "sheet"};     ///< -1: several sheets or none
+inline const Property<int> kNodeFlat{Element::Vertex, "flat"};       ///< 1: a flat cell
+inline const Property<int> kPathType{Element::Edge, "path_type"};    ///< a PathType
+inline const Property<int> kEdgeDegree{Element::Edge, "degree"};     ///< Voronoi faces around it; -1 diagonal
+inline const Property<int> kEdgeSheet{Element::Edge, "sheet"};       ///< -1 on singular edges
+inline const Property<int> kFaceSheet{Element::Face, "sheet"};
+inline const Property<int> kVoronoiFace{Element::Face, "voronoi_face"};  ///< the Voronoi polygon
+inline const Property<int> kGeneratorA{Element::Face, "generator_a"};    ///< the DT edge of the polygon
+inline const Property<int> kGeneratorB{Element::Face, "generator_b"};
 
 struct DurixOptions {
   /// Refuse a carving that would change the Euler characteristic of M_w (notes §3.5 `closable`
@@ -102,11 +116,14 @@ using CancelFn = std::function<void()>;
 DurixResult durix_medial_axis(const SurfaceMesh& mesh, const RegionOracle& oracle, const DurixOptions& options = {},
                               const ProgressFn& progress = {}, const CancelFn& check_cancelled = {});
 
-/// Writes the segmentation as ASCII PLY: vertices with `red green blue sheet removed node`,
-/// faces with `red green blue sheet`.
-void write_segmentation_ply(std::ostream& out, const SurfaceMesh& mesh, const DurixResult& result);
-/// Writes M_w as ASCII PLY: vertices with `input_index`, faces with `node sheet`.
-void write_surface_ply(std::ostream& out, const DurixResult& result);
+/// Writes the segmentation of `mesh` (the mesh the result was computed on) as ASCII PLY, its
+/// vertices mapped by `frame`: vertices with `red green blue sheet removed node`, faces with
+/// `red green blue sheet`.
+void write_segmentation_ply(std::ostream& out, const SurfaceMesh& mesh, const DurixResult& result,
+                            const Similarity& frame = {});
+/// Writes M_w as ASCII PLY, its vertices mapped by `frame`: vertices with `input_index`, faces
+/// with `red green blue node sheet`.
+void write_surface_ply(std::ostream& out, const DurixResult& result, const Similarity& frame = {});
 /// A stable, well-spread colour for a label (grey for -1).
 std::array<int, 3> label_colour(int label);
 

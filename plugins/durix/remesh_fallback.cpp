@@ -89,8 +89,6 @@ SurfaceMesh remesh_checked(const SurfaceMesh& mesh, const Topology& input, const
 
 }  // namespace
 
-const char* method_name(DelaunayMethod method) { return method == DelaunayMethod::Dzm07 ? "dzm07" : "remesh"; }
-
 DelaunaySurfaceResult make_delaunay_surface(const SurfaceMesh& mesh, const DelaunaySurfaceOptions& options,
                                             const std::function<void()>& check_cancelled,
                                             const std::function<void(const std::string&)>& note) {
@@ -109,7 +107,7 @@ DelaunaySurfaceResult make_delaunay_surface(const SurfaceMesh& mesh, const Delau
     } catch (const Cancelled&) {
       throw;
     } catch (const std::runtime_error& e) {
-      if (!options.fallback_to_remesh)
+      if (options.fallback == DelaunayFallback::None)
         throw std::runtime_error(std::string("DZM07 flips and splits failed: ") + e.what() +
                                  " (fallback: none; set fallback: remesh to resample the surface instead)");
       result.dzm07_failure = e.what();

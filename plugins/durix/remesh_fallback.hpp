@@ -12,12 +12,13 @@
 namespace medax::durix {
 
 enum class DelaunayMethod { Dzm07, Remesh };
-const char* method_name(DelaunayMethod method);
+/// What to do when DZM07 fails.
+enum class DelaunayFallback { Remesh, None };
 
 struct DelaunaySurfaceOptions {
   DelaunayMethod method = DelaunayMethod::Dzm07;
-  /// When DZM07 fails: remesh instead (true) or refuse (false).
-  bool fallback_to_remesh = true;
+  /// When DZM07 fails: remesh instead, or refuse.
+  DelaunayFallback fallback = DelaunayFallback::Remesh;
   /// Remesh attempts, each at half the facet size and distance of the one before (a thin part
   /// or a small handle lost by a coarse remesh changes the genus, which is refused).
   int remesh_attempts = 3;

@@ -3,6 +3,7 @@
 
 #include "durix.hpp"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -15,11 +16,11 @@ namespace medax::durix {
 
 namespace {
 
-const std::vector<int>& require_labels(const ElementProperties& store, const char* name, const char* where) {
-  if (!store.labels.has(name))
-    throw std::invalid_argument(std::string("sheet graph: the complex has no ") + where + " label '" + name +
-                                "' (it is not a durix output)");
-  return store.labels.get(name);
+const std::vector<int>& require(const MedialComplex& mc, const Property<int>& label) {
+  if (!mc.has(label))
+    throw std::invalid_argument(fmt::format("sheet graph: the complex has no {} label '{}' (it is not a durix output)",
+                                            label.element == Element::Face ? "face" : "edge", label.name));
+  return mc.get(label);
 }
 
 std::pair<Index, Index> ordered(Index a, Index b) { return a < b ? std::pair{a, b} : std::pair{b, a}; }
@@ -27,10 +28,10 @@ std::pair<Index, Index> ordered(Index a, Index b) { return a < b ? std::pair{a, 
 }  // namespace
 
 SheetGraph sheet_graph(const MedialComplex& mc) {
-  const auto& face_sheet = require_labels(mc.face_props, "sheet", "face");
-  const auto& face_polygon = require_labels(mc.face_props, "voronoi_face", "face");
-  const auto& path_type = require_labels(mc.edge_props, "path_type", "edge");
-  const auto& edge_sheet = require_labels(mc.edge_props, "sheet", "edge");
+  const auto& face_sheet = require(mc, kFaceSheet);
+  const auto& face_polygon = require(mc, kVoronoiFace);
+  const auto& path_type = require(mc, kPathType);
+  const auto& edge_sheet = require(mc, kEdgeSheet);
 
   int count = 0;
   for (int s : face_sheet) count = std::max(count, s + 1);
@@ -95,7 +96,8 @@ SheetGraph sheet_graph(const MedialComplex& mc) {
   return graph;
 }
 
-void write_sheet_graph_json(std::ostream& out, const SheetGraph& graph, double scale) {
+void write_sheet_graph_json(std::ostream& out, const SheetGraph& graph) {
+  const double scale = graph.input_scale;
   nlohmann::ordered_json sheets = nlohmann::ordered_json::array(), adjacency = nlohmann::ordered_json::array();
   for (const SheetNode& s : graph.sheets)
     sheets.push_back({{"id", s.id},

@@ -3,8 +3,10 @@
 // nodes, their adjacency through singular paths (or, for curves and sheets touching only at a
 // medial vertex, through that vertex) as edges. Computed from the output complex's labels
 // alone (face `sheet`, `voronoi_face`; edge `path_type`, `sheet`), so it describes exactly what
-// the complex says.
+// the complex says. `durix` publishes it as scene data (kSheetGraph), so a later stage can read
+// it and the run folder gets `<id>_sheets.json`.
 #include <medax/medial_complex.hpp>
+#include <medax/scene_data.hpp>
 
 #include <iosfwd>
 #include <vector>
@@ -30,13 +32,21 @@ struct SheetAdjacency {
 struct SheetGraph {
   std::vector<SheetNode> sheets;          ///< by id
   std::vector<SheetAdjacency> adjacency;  ///< sorted by (a, b)
+  /// Lengths and areas are in the complex's frame; times input_scale (areas times its square)
+  /// they are in the input's frame (`durix` sets it to the shape's to_input.scale).
+  double input_scale = 1.0;
 };
 
 /// Throws std::invalid_argument when the complex lacks the durix labels.
 SheetGraph sheet_graph(const MedialComplex& medial);
 
-/// JSON: {"sheets": [...], "adjacency": [...]} with lengths and areas multiplied by `scale`
-/// and `scale`² (to report them in the input's frame).
-void write_sheet_graph_json(std::ostream& out, const SheetGraph& graph, double scale = 1.0);
+/// JSON: {"sheets": [...], "adjacency": [...]} with lengths and areas in the input's frame
+/// (multiplied by `input_scale` and its square).
+void write_sheet_graph_json(std::ostream& out, const SheetGraph& graph);
+
+/// The sheet graph as scene data: published by `durix`, written as `<id>_sheets.json`.
+inline const DataKey<SheetGraph> kSheetGraph{
+    "durix.sheet_graph", "durix", "sheets.json",
+    [](const SheetGraph& graph, std::ostream& out) { write_sheet_graph_json(out, graph); }};
 
 }  // namespace medax::durix

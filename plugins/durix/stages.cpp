@@ -4,10 +4,7 @@
 
 #include "sheet_graph.hpp"
 
-#include "remesh_fallback.hpp"
-
 #include <medax/services/kdtree.hpp>
-#include <medax/services/mesh_check.hpp>
 
 #include <fmt/format.h>
 
@@ -19,30 +16,42 @@ namespace medax::durix {
 // ---------------------------------------------------------------------------------------------
 // durix_epsilon
 
+namespace {
+const std::vector<Vec3>& surface_points(const Shape& shape) {
+  return shape.mesh.empty() ? shape.samples.points : shape.mesh.vertices;
+}
+}  // namespace
+
 StageInfo EpsilonOracleStage::describe() {
   return {"durix_epsilon",
           "Durix ε-oracle: a surface region is insignificant when its vertices lie within ε of the medial "
           "balls of the path that attaches it; alone, counts the surface vertices each inflated ball covers",
-          "docs/plugins/durix.md#durix_epsilon",
-          {ParamSpec::real("epsilon", 0.01, "tolerance ε (the paper's default: 1% of the bounding-box diagonal)")
-               .at_least(0)
-               .in_unit("bbox diagonal, or shape units when absolute"),
-           ParamSpec::choice("mode", "relative", {"relative", "absolute"},
-                             "relative: ε times the bounding-box diagonal of the shape; absolute: ε as given")}};
+          "docs/plugins/durix.md#durix_epsilon"};
+}
+
+void EpsilonOracleStage::declare(ParamBinder& p) {
+  p.add("epsilon", epsilon_, "tolerance ε (the paper's default: 1% of the bounding-box diagonal)")
+      .at_least(0)
+      .in_unit("bbox diagonal, or shape units when absolute");
+  p.add("mode", mode_, {{"relative", EpsilonMode::Relative}, {"absolute", EpsilonMode::Absolute}},
+        "relative: ε times the bounding-box diagonal of the shape; absolute: ε as given");
 }
 
 double EpsilonOracleStage::absolute_epsilon(const Shape& shape) const {
-  const double eps = params().real("epsilon");
-  return params().text("mode") == "absolute" ? eps : eps * bbox_diagonal(shape.mesh.vertices);
+  return mode_ == EpsilonMode::Absolute ? epsilon_ : epsilon_ * bbox_diagonal(shape.mesh.vertices);
 }
 
 std::unique_ptr<RegionOracle> EpsilonOracleStage::make_oracle(const Shape& shape) const {
   return std::make_unique<EpsilonOracle>(absolute_epsilon(shape));
 }
 
+void EpsilonOracleStage::check_scene(const Scene& scene) const {
+  if (surface_points(scene.shape).empty()) throw std::invalid_argument("the shape has no surface points to cover");
+}
+
 void EpsilonOracleStage::measure(const Shape& shape, MedialComplex& medial, Context& ctx) {
-  const std::vector<Vec3>& points = shape.mesh.empty() ? shape.samples.points : shape.mesh.vertices;
-  if (points.empty()) throw std::invalid_argument("durix_epsilon: the shape has no surface points to cover");
+  const std::vector<Vec3>& points = surface_points(shape);
+  if (points.empty()) throw std::invalid_argument("the shape has no surface points to cover");
   const double eps = absolute_epsilon(shape);
   const std::size_t nv = medial.num_vertices();
   services::PointIndex index(points);
@@ -76,99 +85,83 @@ StageInfo DelaunaySurfaceStage::describe() {
           "Makes the mesh a Delaunay mesh (every triangle a facet of the Delaunay tetrahedralization of its "
           "vertices) by edge flips and splits (Dyer, Zhang, Möller 2007), or by a restricted-Delaunay remesh "
           "(CGAL Mesh_3) where they fail; verified, refuses what it cannot convert",
-          "docs/plugins/durix.md#delaunay_surface",
-          {ParamSpec::choice("method", "dzm07", {"dzm07", "remesh"},
-                             "dzm07: flips and splits, keeps the input vertices; remesh: resample the surface with "
-                             "Mesh_3 (the input vertices are not kept)"),
-           ParamSpec::choice("fallback", "remesh", {"remesh", "none"},
-                             "when dzm07 fails: remesh (with a warning) or refuse"),
-           ParamSpec::real("feature_angle", 20.0,
-                           "dzm07: flip a non-Delaunay edge only where its faces bend less than this; split it "
-                           "otherwise")
-               .range(0, 90)
-               .in_unit("degrees"),
-           ParamSpec::boolean("flips", true, "dzm07: allow flips (false: splits only, the surface never moves)"),
-           ParamSpec::real("max_insertions", 4.0,
-                           "dzm07: give up after inserting this many points per input vertex (+1000)")
-               .at_least(0)
-               .in_unit("ratio"),
-           ParamSpec::real("remesh_facet_size", RemeshOptions{}.facet_size,
-                           "remesh: largest surface Delaunay ball radius, times the input's mean edge length")
-               .at_least(1e-3)
-               .in_unit("mean edge length"),
-           ParamSpec::real("remesh_facet_distance", RemeshOptions{}.facet_distance,
-                           "remesh: largest distance from a facet's circumcentre to the input surface")
-               .range(1e-5, 0.1)
-               .in_unit("bbox diagonal"),
-           ParamSpec::real("remesh_facet_angle", RemeshOptions{}.facet_angle_deg,
-                           "remesh: smallest facet angle (Mesh_3 terminates up to 30)")
-               .range(1, 30)
-               .in_unit("degrees"),
-           ParamSpec::integer("remesh_attempts", DelaunaySurfaceOptions{}.remesh_attempts,
-                              "remesh: attempts; after a lost handle or component at half the size and distance, "
-                              "after a run to the vertex cap or a mesher error at twice the distance")
-               .range(1, 6),
-           ParamSpec::boolean("check_self_intersections", true,
-                              "refuse self-intersecting meshes (the exact test; the solid is undefined otherwise)")}};
+          "docs/plugins/durix.md#delaunay_surface"};
 }
 
-void DelaunaySurfaceStage::prepare(const Scene& scene) const {
+void DelaunaySurfaceStage::declare(ParamBinder& p) {
+  p.add("method", options_.method, {{"dzm07", DelaunayMethod::Dzm07}, {"remesh", DelaunayMethod::Remesh}},
+        "dzm07: flips and splits, keeps the input vertices; remesh: resample the surface with Mesh_3 (the input "
+        "vertices are not kept)");
+  p.add("fallback", options_.fallback, {{"remesh", DelaunayFallback::Remesh}, {"none", DelaunayFallback::None}},
+        "when dzm07 fails: remesh (with a warning) or refuse");
+  p.add("feature_angle", options_.dzm07.feature_angle_deg,
+        "dzm07: flip a non-Delaunay edge only where its faces bend less than this; split it otherwise")
+      .range(0, 90)
+      .in_unit("degrees");
+  p.add("flips", options_.dzm07.flips,
+        "dzm07: allow flips (false: splits only; the surface never moves, but the splits may not converge)");
+  p.add("max_insertions", options_.dzm07.max_insertions_factor,
+        "dzm07: give up after inserting this many points per input vertex (+1000)")
+      .at_least(0)
+      .in_unit("ratio");
+  p.add("remesh_facet_size", options_.remesh.facet_size,
+        "remesh: largest surface Delaunay ball radius, times the input's mean edge length (0.85: about the "
+        "input's vertex count on organic meshes)")
+      .at_least(1e-3)
+      .in_unit("mean edge length");
+  p.add("remesh_facet_distance", options_.remesh.facet_distance,
+        "remesh: largest distance from a facet's circumcentre to the input surface; sets the vertex count of CAD "
+        "meshes (their sharp creases are not protected)")
+      .range(1e-5, 0.1)
+      .in_unit("bbox diagonal");
+  p.add("remesh_facet_angle", options_.remesh.facet_angle_deg,
+        "remesh: smallest facet angle (Mesh_3 terminates up to 30)")
+      .range(1, 30)
+      .in_unit("degrees");
+  p.add("remesh_attempts", options_.remesh_attempts,
+        "remesh: attempts; after a lost handle or component at half the size and distance, after a run to the "
+        "vertex cap or a mesher error at twice the distance")
+      .range(1, 6);
+  p.add("check_self_intersections", check_options_.self_intersections,
+        "refuse self-intersecting meshes (the exact test; the solid is undefined otherwise)");
+}
+
+void DelaunaySurfaceStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.empty())
-    throw std::invalid_argument("delaunay_surface: the shape has no surface mesh (it converts meshes, not samples)");
+    throw std::invalid_argument("the shape has no surface mesh (this stage converts meshes, not samples)");
+}
+
+void DelaunaySurfaceStage::check_input(const SurfaceMesh& mesh, Context& ctx) const {
+  if (mesh.empty()) throw std::invalid_argument("the shape has no surface mesh");
+  const services::MeshReport report = services::check_mesh(mesh, check_options_);
+  ctx.info("input: " + report.summary());
+  if (!report.ok())
+    throw std::runtime_error("cannot convert this mesh: " + report.describe_problems() +
+                             " (a Delaunay mesh must bound a solid: closed, manifold, outward, without duplicates; "
+                             "put a `repair` stage before)");
 }
 
 void DelaunaySurfaceStage::condition(Shape& shape, Context& ctx) {
-  if (shape.mesh.empty()) throw std::invalid_argument("delaunay_surface: the shape has no surface mesh");
-  services::MeshCheckOptions check_options;
-  check_options.self_intersections = params().boolean("check_self_intersections");
-  const services::MeshReport report = services::check_mesh(shape.mesh, check_options);
-  ctx.info("input: " + report.summary());
-  if (!report.ok())
-    throw std::runtime_error("delaunay_surface: cannot convert this mesh: " + report.describe_problems() +
-                             " (a Delaunay mesh must bound a solid: closed, manifold, outward, without duplicates; "
-                             "put a `repair` stage before)");
-  const DelaunaySurfaceOptions options = conversion_options();
+  check_input(shape.mesh, ctx);
   DelaunaySurfaceResult r;
   try {
     r = make_delaunay_surface(
-        shape.mesh, options, [&ctx] { ctx.check_cancelled(); }, [&ctx](const std::string& line) { ctx.info(line); });
+        shape.mesh, options_, [&ctx] { ctx.check_cancelled(); }, [&ctx](const std::string& line) { ctx.info(line); });
   } catch (const Cancelled&) {
     throw;
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("delaunay_surface: cannot convert this mesh: ") + e.what());
+    throw std::runtime_error(std::string("cannot convert this mesh: ") + e.what());
   }
   if (r.method == DelaunayMethod::Dzm07) {
     if (!log_dzm07(r.dzm07, ctx)) return;
   } else {
-    if (!r.dzm07_failure.empty())
-      ctx.warn("DZM07 flips and splits failed (" + r.dzm07_failure +
-               "); fell back to the restricted-Delaunay remesh (fallback: remesh)");
-    const RemeshReport& m = r.remesh;
-    ctx.info(fmt::format("remesh (Mesh_3, facet size {:.4g}, distance {:.4g}): {} vertices, {} faces, genus {}, {} "
-                         "component(s), from a tetrahedral mesh of {} vertices ({:.3f} s with the checks); the input "
-                         "vertices are NOT kept: the surface is resampled",
-                         m.facet_size, m.facet_distance, m.output_vertices, m.output_faces, r.genus, r.components,
-                         m.mesh3_vertices, r.seconds));
+    log_remesh(r, ctx);
   }
   shape.mesh = std::move(r.mesh);
   if (!shape.samples.empty()) {
-    ctx.warn("dropped the samples taken before delaunay_surface (the surface changed); put `sample` after it");
+    ctx.warn("dropped the samples taken before this stage (the surface changed); put `sample` after it");
     shape.samples = {};
   }
-}
-
-DelaunaySurfaceOptions DelaunaySurfaceStage::conversion_options() const {
-  DelaunaySurfaceOptions options;
-  options.method = params().text("method") == "remesh" ? DelaunayMethod::Remesh : DelaunayMethod::Dzm07;
-  options.fallback_to_remesh = params().text("fallback") == "remesh";
-  options.dzm07.feature_angle_deg = params().real("feature_angle");
-  options.dzm07.flips = params().boolean("flips");
-  options.dzm07.max_insertions_factor = params().real("max_insertions");
-  options.remesh.facet_size = params().real("remesh_facet_size");
-  options.remesh.facet_distance = params().real("remesh_facet_distance");
-  options.remesh.facet_angle_deg = params().real("remesh_facet_angle");
-  options.remesh_attempts = static_cast<int>(params().integer("remesh_attempts"));
-  return options;
 }
 
 bool DelaunaySurfaceStage::log_dzm07(const DelaunayMeshReport& r, Context& ctx) {
@@ -185,6 +178,18 @@ bool DelaunaySurfaceStage::log_dzm07(const DelaunayMeshReport& r, Context& ctx) 
   return true;
 }
 
+void DelaunaySurfaceStage::log_remesh(const DelaunaySurfaceResult& r, Context& ctx) {
+  if (!r.dzm07_failure.empty())
+    ctx.warn("DZM07 flips and splits failed (" + r.dzm07_failure +
+             "); fell back to the restricted-Delaunay remesh (fallback: remesh)");
+  const RemeshReport& m = r.remesh;
+  ctx.info(fmt::format("remesh (Mesh_3, facet size {:.4g}, distance {:.4g}): {} vertices, {} faces, genus {}, {} "
+                       "component(s), from a tetrahedral mesh of {} vertices ({:.3f} s with the checks); the input "
+                       "vertices are NOT kept: the surface is resampled",
+                       m.facet_size, m.facet_distance, m.output_vertices, m.output_faces, r.genus, r.components,
+                       m.mesh3_vertices, r.seconds));
+}
+
 // ---------------------------------------------------------------------------------------------
 // durix
 
@@ -192,53 +197,57 @@ StageInfo DurixStage::describe() {
   return {"durix",
           "Durix et al. 2023 clean medial axis: sheet propagation over the interior Delaunay cells of a Delaunay "
           "mesh, ε-filtration of sheets with carving of the surface, sheets, boundary and singular paths",
-          "docs/plugins/durix.md#durix",
-          {ParamSpec::stage("oracle", Role::Significance, "durix_epsilon",
-                            "the significance test of a region beyond a singular path (a durix package oracle)"),
-           ParamSpec::boolean("preserve_topology", true,
-                              "refuse a carving that changes the Euler characteristic of the working surface"),
-           ParamSpec::boolean("simplify_boundaries", true, "carve boundary spikes covered within ε (§4.6)"),
-           ParamSpec::boolean("remove_outside_centres", true,
-                              "carve surface cells whose ball is centred outside the input, when ε allows (Appendix A)"),
-           ParamSpec::boolean("split_problematic", true, "split sheets at problematic edges (§4.7)"),
-           ParamSpec::integer("max_passes", 10, "fixpoint: passes of propagation and carving at most").range(1, 1000),
-           ParamSpec::boolean("write_surface", true,
-                              "write the working surface M_w as <id>_surface.ply (input frame)"),
-           ParamSpec::boolean("write_segmentation", true,
-                              "write the surface segmentation (sheet per face) as <id>_segmentation.ply"),
-           ParamSpec::boolean("write_sheet_graph", true,
-                              "write the sheets and their adjacency through singular paths as <id>_sheets.json")}};
+          "docs/plugins/durix.md#durix"};
 }
 
-void DurixStage::prepare(const Scene& scene) const { check(scene.shape); }
+void DurixStage::declare(ParamBinder& p) {
+  p.add("oracle", oracle_, "durix_epsilon",
+        "the significance test of a region beyond a singular path (a durix package oracle)");
+  p.add("preserve_topology", options_.preserve_topology,
+        "refuse a carving that changes χ(M_w), the Euler characteristic of the working surface (a topological "
+        "form of [R]'s `closable` filter)");
+  p.add("simplify_boundaries", options_.simplify_boundaries, "carve covered curve ends and boundary spikes (§4.6)");
+  p.add("remove_outside_centres", options_.remove_outside_centres,
+        "carve surface cells whose ball is centred outside the input, when ε allows (Appendix A)");
+  p.add("split_problematic", options_.split_problematic, "split sheets at problematic edges (§4.7)");
+  p.add("max_passes", options_.max_passes, "fixpoint: passes of propagation and carving at most").range(1, 1000);
+  p.add("write_surface", write_surface_, "write the working surface M_w as `<id>_surface.ply` (input frame)");
+  p.add("write_segmentation", write_segmentation_,
+        "write the surface segmentation (sheet per vertex and face) as `<id>_segmentation.ply` (input frame)");
+  p.add("write_sheet_graph", write_sheet_graph_,
+        "write the sheets and their adjacency through singular paths as `<id>_sheets.json` (published as scene "
+        "data `durix.sheet_graph` either way)");
+}
+
+void DurixStage::check_params() const {
+  if (oracle_.empty()) return;  // filled in by the pipeline, or by the caller before extract()
+  try {
+    oracle_.get();
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("parameter 'oracle' must be a durix oracle such as `durix_epsilon`, not '" +
+                                oracle_.plugin() + "'");
+  }
+}
 
 void DurixStage::check(const Shape& shape) const {
   if (shape.mesh.empty() || shape.mesh.vertices.size() < 4)
-    throw std::invalid_argument("durix: the shape has no surface mesh (at least 4 vertices); durix needs a closed "
+    throw std::invalid_argument("the shape has no surface mesh (at least 4 vertices); this stage needs a closed "
                                 "Delaunay mesh (`delaunay_surface`)");
-  if (!dynamic_cast<const DurixOracle*>(params().stage_ref("oracle").instance.get()))
-    throw std::invalid_argument("durix: parameter 'oracle' must be a durix oracle such as `durix_epsilon`, not '" +
-                                params().stage_ref("oracle").plugin + "'");
 }
 
 MedialComplex DurixStage::extract(const Shape& shape, Context& ctx) {
+  check_params();
   check(shape);
-  const auto& oracle_stage = params().stage<DurixOracle>("oracle");
-  const std::unique_ptr<RegionOracle> oracle = oracle_stage.make_oracle(shape);
-  DurixOptions options;
-  options.preserve_topology = params().boolean("preserve_topology");
-  options.simplify_boundaries = params().boolean("simplify_boundaries");
-  options.remove_outside_centres = params().boolean("remove_outside_centres");
-  options.split_problematic = params().boolean("split_problematic");
-  options.max_passes = static_cast<int>(params().integer("max_passes"));
-  try {
-    last_ = durix_medial_axis(
-        shape.mesh, *oracle, options, [&ctx](double f, std::string_view what) { ctx.progress(f, what); },
-        [&ctx] { ctx.check_cancelled(); });
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("durix: ") + e.what());
-  }
-  const DurixReport& r = last_.report;
+  const std::unique_ptr<RegionOracle> oracle = oracle_->make_oracle(shape);
+  last_ = durix_medial_axis(
+      shape.mesh, *oracle, options_, [&ctx](double f, std::string_view what) { ctx.progress(f, what); },
+      [&ctx] { ctx.check_cancelled(); });
+  log_report(last_.report, ctx);
+  write_outputs(shape, ctx);
+  return last_.medial;
+}
+
+void DurixStage::log_report(const DurixReport& r, Context& ctx) {
   ctx.info(fmt::format("ε = {:.6g}; {} vertices, {} faces; {} Delaunay cells, {} interior, {} component(s)", r.epsilon,
                        r.input_vertices, r.input_faces, r.dt_cells, r.interior_cells, r.components));
   ctx.info(fmt::format("{} pass(es): {} candidate sheets, {} carved, {} boundary spikes carved; refused: {} not "
@@ -258,43 +267,33 @@ MedialComplex DurixStage::extract(const Shape& shape, Context& ctx) {
   ctx.info(fmt::format("time: Delaunay {:.3f} s, propagation {:.3f} s, output {:.3f} s", r.seconds_dual,
                        r.seconds_propagation, r.seconds_output));
   if (r.problematic_left) ctx.warn(fmt::format("{} problematic edges could not be split", r.problematic_left));
+}
 
+void DurixStage::write_outputs(const Shape& shape, Context& ctx) const {
   const Similarity& to_input = shape.to_input;
-  if (params().boolean("write_surface")) {
-    ctx.write_output(id() + "_surface.ply", [&](std::ostream& out) {
-      DurixResult copy;
-      copy.surface = last_.surface;
-      for (Vec3& p : copy.surface.vertices) p = to_input.apply(p);
-      copy.surface_vertex = last_.surface_vertex;
-      copy.surface_face_node = last_.surface_face_node;
-      copy.surface_face_sheet = last_.surface_face_sheet;
-      write_surface_ply(out, copy);
-    });
-  }
-  if (params().boolean("write_segmentation")) {
-    ctx.write_output(id() + "_segmentation.ply", [&](std::ostream& out) {
-      SurfaceMesh mesh = shape.mesh;
-      for (Vec3& p : mesh.vertices) p = to_input.apply(p);
-      write_segmentation_ply(out, mesh, last_);
-    });
-  }
-  if (params().boolean("write_sheet_graph"))
-    ctx.write_output(id() + "_sheets.json", [&](std::ostream& out) {
-      write_sheet_graph_json(out, sheet_graph(last_.medial), to_input.scale);
-    });
-  return last_.medial;
+  if (write_surface_)
+    ctx.write_output(id() + "_surface.ply", [&](std::ostream& out) { write_surface_ply(out, last_, to_input); });
+  if (write_segmentation_)
+    ctx.write_output(id() + "_segmentation.ply",
+                     [&](std::ostream& out) { write_segmentation_ply(out, shape.mesh, last_, to_input); });
+  SheetGraph graph = sheet_graph(last_.medial);
+  graph.input_scale = to_input.scale;
+  DataKey<SheetGraph> key = kSheetGraph;
+  if (!write_sheet_graph_) key.write = nullptr;  // published, not written
+  ctx.publish(key, std::move(graph));
 }
 
 ParamSet durix_params(double epsilon) {
-  ParamSet params = default_params(DurixStage::describe().params);
-  auto ref = std::make_shared<StageRef>();
-  ref->plugin = "durix_epsilon";
-  ref->params = default_params(EpsilonOracleStage::describe().params);
-  ref->params.set("epsilon", epsilon);
+  ParamSet oracle_params;
+  oracle_params.set("epsilon", epsilon);
   auto oracle = std::make_shared<EpsilonOracleStage>();
   oracle->set_id("durix_epsilon");
-  oracle->configure(ref->params);
+  oracle->configure(oracle_params);
+  auto ref = std::make_shared<StageRef>();
+  ref->plugin = "durix_epsilon";
+  ref->params = oracle_params;
   ref->instance = oracle;
+  ParamSet params;
   params.set("oracle", ref);
   return params;
 }

@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
     if (a == "--eps" && i + 1 < argc) eps = std::stod(argv[++i]);
     else if (a == "--method" && i + 1 < argc)
       options.method = std::string(argv[++i]) == "remesh" ? durix::DelaunayMethod::Remesh : durix::DelaunayMethod::Dzm07;
-    else if (a == "--no-fallback") options.fallback_to_remesh = false;
+    else if (a == "--no-fallback") options.fallback = durix::DelaunayFallback::None;
     else if (a == "--facet-size" && i + 1 < argc) options.remesh.facet_size = std::stod(argv[++i]);
     else if (a == "--facet-distance" && i + 1 < argc) options.remesh.facet_distance = std::stod(argv[++i]);
     else inputs.emplace_back(a);

@@ -140,7 +140,7 @@ void check_invariants(const SurfaceMesh& input, const DurixResult& r, double eps
   }
   for (EdgeId e = 0; e < fresh.num_edges(); ++e) fresh_faces += fresh.volumetric(e);
   std::set<Quad> nodes;
-  const auto& flat = mc.vertex_props.labels.get("flat");
+  const auto& flat = mc.get(kNodeFlat);
   for (std::size_t i = 0; i < mc.num_vertices(); ++i) {
     const auto& g = mc.generators[i];
     REQUIRE(g.size() == 4);
@@ -153,7 +153,7 @@ void check_invariants(const SurfaceMesh& input, const DurixResult& r, double eps
   }
   CHECK(nodes.size() == mc.num_vertices());
   CHECK(nodes == expected_nodes);
-  const auto& path_type = mc.edge_props.labels.get("path_type");
+  const auto& path_type = mc.get(kPathType);
   const std::size_t voronoi_edges =
       static_cast<std::size_t>(std::count_if(path_type.begin(), path_type.end(), [](int t) { return t >= 0; }));
   CHECK(voronoi_edges == fresh_facets);
@@ -169,14 +169,14 @@ void check_invariants(const SurfaceMesh& input, const DurixResult& r, double eps
 
   // Manifold sheets (§5.4): per Voronoi edge, the sheets of the polygons around it.
   std::map<std::pair<Index, Index>, std::vector<int>> around;
-  const auto& face_sheet = mc.face_props.labels.get("sheet");
+  const auto& face_sheet = mc.get(kFaceSheet);
   for (std::size_t f = 0; f < mc.faces.size(); ++f)
     for (int i = 0; i < 3; ++i) {
       Index a = mc.faces[f][i], b = mc.faces[f][(i + 1) % 3];
       if (a > b) std::swap(a, b);
       around[{a, b}].push_back(face_sheet[f]);
     }
-  const auto& degree = mc.edge_props.labels.get("degree");
+  const auto& degree = mc.get(kEdgeDegree);
   for (std::size_t e = 0; e < mc.edges.size(); ++e) {
     if (path_type[e] < 0) continue;
     Index a = mc.edges[e][0], b = mc.edges[e][1];

@@ -1,9 +1,11 @@
 // Tests of the durix package (notes §5): conversion, extraction invariants on the fixtures,
 // the bump, determinism, refusals, and the stages.
 #include "fixtures.hpp"
+#include "sheet_graph.hpp"
 #include "stages.hpp"
 
 #include <medax/io.hpp>
+#include <medax/plugin.hpp>
 #include <medax/services/topology.hpp>
 #include <medax/testing/shapes.hpp>
 
@@ -26,7 +28,7 @@ DurixResult run(const SurfaceMesh& mesh, double relative_eps, DurixOptions optio
 }
 
 std::size_t count_type(const MedialComplex& mc, int type) {
-  const auto& t = mc.edge_props.labels.get("path_type");
+  const auto& t = mc.get(kPathType);
   return static_cast<std::size_t>(std::count(t.begin(), t.end(), type));
 }
 
@@ -157,7 +159,7 @@ TEST_CASE("durix: one seed per component: two separate solids give two axes", "[
   CHECK(topology.b0 == 2);
   CHECK(topology.euler == 2);
   // Both solids have labelled faces: no face without a sheet.
-  for (int s : r.medial.face_props.labels.get("sheet")) CHECK(s >= 0);
+  for (int s : r.medial.get(kFaceSheet)) CHECK(s >= 0);
 }
 
 TEST_CASE("durix: epsilon 0 keeps the whole interior Voronoi axis", "[durix]") {
@@ -197,8 +199,8 @@ TEST_CASE("durix: the extraction is deterministic", "[durix]") {
   CHECK(a.medial.radii == b.medial.radii);
   CHECK(a.medial.edges == b.medial.edges);
   CHECK(a.medial.faces == b.medial.faces);
-  CHECK(a.medial.face_props.labels.get("sheet") == b.medial.face_props.labels.get("sheet"));
-  CHECK(a.medial.edge_props.labels.get("path_type") == b.medial.edge_props.labels.get("path_type"));
+  CHECK(a.medial.get(kFaceSheet) == b.medial.get(kFaceSheet));
+  CHECK(a.medial.get(kPathType) == b.medial.get(kPathType));
   CHECK(a.surface.faces == b.surface.faces);
   CHECK(a.face_sheet == b.face_sheet);
 }
@@ -207,8 +209,7 @@ TEST_CASE("durix: the stages run through their parameters", "[durix][stages]") {
   Shape shape;
   shape.mesh = testing::make_box(1.0, 0.6, 0.3, 5);
   BasicContext ctx(1);
-  DelaunaySurfaceStage conversion;
-  conversion.configure(default_params(DelaunaySurfaceStage::describe().params));
+  DelaunaySurfaceStage conversion;  // at its declared defaults
   conversion.condition(shape, ctx);
   CHECK(check_delaunay_mesh(shape.mesh).ok());
 
@@ -216,16 +217,60 @@ TEST_CASE("durix: the stages run through their parameters", "[durix][stages]") {
   stage.configure(durix_params(0.01));
   const MedialComplex mc = stage.extract(shape, ctx);
   CHECK(mc.num_vertices() > 0);
-  CHECK(mc.face_props.labels.has("sheet"));
-  CHECK(mc.edge_props.labels.has("path_type"));
+  CHECK(mc.has(kFaceSheet));
+  CHECK(mc.has(kPathType));
   CHECK(mc.generator_kind == "mesh_vertex");
+  CHECK(mc.generators.size() == mc.num_vertices());
+  CHECK_NOTHROW(mc.validate());
+  // The sheet graph is scene data for later stages, with a file for the run folder.
+  const SheetGraph& graph = ctx.data().get(kSheetGraph);
+  CHECK(graph.sheets.size() == stage.last_result().report.sheets + stage.last_result().report.curve_sheets);
+  CHECK(ctx.data().outputs().size() == 1);
 
   EpsilonOracleStage oracle;
-  oracle.configure(default_params(EpsilonOracleStage::describe().params));
   MedialComplex copy = mc;
   oracle.measure(shape, copy, ctx);
   REQUIRE(copy.vertex_props.fields.has("durix_coverage"));
   for (double c : copy.vertex_props.fields.get("durix_coverage")) CHECK(c >= 4);  // its own 4 vertices
+}
+
+TEST_CASE("durix: without write_sheet_graph the sheet graph is published but not written", "[durix][stages]") {
+  Shape shape;
+  shape.mesh = fixture("box");
+  BasicContext ctx(1);
+  DurixStage stage;
+  ParamSet params = durix_params(0.01);
+  params.set("write_sheet_graph", false);
+  stage.configure(params);
+  stage.extract(shape, ctx);
+  CHECK(ctx.data().find(kSheetGraph) != nullptr);
+  CHECK(ctx.data().outputs().empty());
+}
+
+TEST_CASE("durix: the parameters are declared once, with the options' defaults", "[durix][stages]") {
+  const StageInfo info = stage_info<DurixStage>();
+  const auto spec = [&](const std::string& name) {
+    for (const ParamSpec& p : info.params)
+      if (p.name == name) return p;
+    FAIL("no parameter " << name);
+    return ParamSpec{};
+  };
+  CHECK(std::get<long long>(spec("max_passes").default_value) == DurixOptions{}.max_passes);
+  CHECK(std::get<std::string>(spec("oracle").default_value) == "durix_epsilon");
+  CHECK(spec("oracle").type == ParamType::Stage);
+  const StageInfo conversion = stage_info<DelaunaySurfaceStage>();
+  CHECK(conversion.params.size() == 10);
+  CHECK(conversion.params[0].choices == std::vector<std::string>{"dzm07", "remesh"});
+  CHECK(std::get<std::string>(conversion.params[1].default_value) == "remesh");
+  // A stage that is not a durix oracle is refused before anything runs.
+  auto ref = std::make_shared<StageRef>();
+  ref->plugin = "not_an_oracle";
+  ref->instance = std::make_shared<DelaunaySurfaceStage>();
+  ParamSet params;
+  params.set("oracle", ref);
+  DurixStage stage;
+  stage.configure(params);
+  CHECK_THROWS_WITH(stage.check_params(), Catch::Contains("durix oracle") && Catch::Contains("not_an_oracle"));
 }
 
 TEST_CASE("delaunay_surface refuses an open mesh clearly", "[durix][stages]") {
@@ -234,12 +279,11 @@ TEST_CASE("delaunay_surface refuses an open mesh clearly", "[durix][stages]") {
   shape.mesh.faces.pop_back();
   BasicContext ctx(1);
   DelaunaySurfaceStage conversion;
-  conversion.configure(default_params(DelaunaySurfaceStage::describe().params));
   try {
     conversion.condition(shape, ctx);
     FAIL("an open mesh was accepted");
   } catch (const std::runtime_error& e) {
-    CHECK(std::string(e.what()).find("delaunay_surface") != std::string::npos);
+    CHECK(std::string(e.what()).find("cannot convert") != std::string::npos);
     CHECK(std::string(e.what()).find("repair") != std::string::npos);
   }
 }

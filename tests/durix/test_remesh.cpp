@@ -68,7 +68,7 @@ TEST_CASE("durix remesh fallback: DZM07 fails on a thin jittered L-bar and the r
 
 TEST_CASE("durix remesh fallback: fallback none refuses the L-bar and says what to do", "[durix][delaunay_surface][remesh]") {
   DelaunaySurfaceOptions options;
-  options.fallback_to_remesh = false;
+  options.fallback = DelaunayFallback::None;
   try {
     make_delaunay_surface(thin_l_bar(), options);
     FAIL("expected a refusal");
@@ -122,9 +122,7 @@ TEST_CASE("durix remesh: a result that lost a component is refused, saying what 
 }
 
 TEST_CASE("durix delaunay_surface stage: the fallback warns, fallback none refuses", "[durix][delaunay_surface][stages]") {
-  DelaunaySurfaceStage stage;
-  ParamSet params = default_params(DelaunaySurfaceStage::describe().params);
-  stage.configure(params);
+  DelaunaySurfaceStage stage;  // at its declared defaults: fallback: remesh
   Shape shape;
   shape.mesh = thin_l_bar();
   RecordingContext ctx;
@@ -133,11 +131,12 @@ TEST_CASE("durix delaunay_surface stage: the fallback warns, fallback none refus
   CHECK_THAT(ctx.warnings[0], Catch::Contains("DZM07") && Catch::Contains("remesh"));
   CHECK(check_delaunay_mesh(shape.mesh).ok());
 
+  ParamSet params;
   params.set("fallback", std::string("none"));
   stage.configure(params);
   shape.mesh = thin_l_bar();
   CHECK_THROWS_WITH(stage.condition(shape, ctx),
-                    Catch::Contains("delaunay_surface: cannot convert") && Catch::Contains("fallback"));
+                    Catch::Contains("cannot convert") && Catch::Contains("fallback"));
 }
 
 TEST_CASE("durix remesh: an attempt that does not finish is retried at twice the facet distance", "[durix][remesh]") {

@@ -3,11 +3,11 @@
 #include "sheet_graph.hpp"
 
 #include <medax/services/topology.hpp>
+#include <medax/union_find.hpp>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include <numeric>
 #include <sstream>
 
 using namespace medax;
@@ -21,17 +21,10 @@ DurixResult run(const SurfaceMesh& mesh) {
 }
 
 /// Components of the graph over sheets, both kinds of adjacency.
-int graph_components(const SheetGraph& g) {
-  std::vector<int> parent(g.sheets.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const SheetAdjacency& a : g.adjacency) parent[find(a.a)] = find(a.b);
-  int n = 0;
-  for (std::size_t i = 0; i < parent.size(); ++i) n += find(static_cast<int>(i)) == static_cast<int>(i);
-  return n;
+std::size_t graph_components(const SheetGraph& g) {
+  UnionFind components(g.sheets.size());
+  for (const SheetAdjacency& a : g.adjacency) components.unite(a.a, a.b);
+  return components.count();
 }
 
 }  // namespace
@@ -60,7 +53,7 @@ TEST_CASE("durix: the sheet graph has every sheet and is connected like the comp
     // Every singular edge separates at least two sheets, so the singular adjacencies count at
     // least as many edge-sheet-pairs as there are singular edges (a forced edge may have one
     // sheet on both sides, when the cut it belongs to did not separate).
-    const auto& type = r.medial.edge_props.labels.get("path_type");
+    const auto& type = r.medial.get(kPathType);
     const auto singular = static_cast<std::size_t>(std::count(type.begin(), type.end(), int(kSingular)));
     std::size_t pairs = 0;
     for (const SheetAdjacency& a : g.adjacency) {
@@ -75,9 +68,13 @@ TEST_CASE("durix: the sheet graph has every sheet and is connected like the comp
 TEST_CASE("durix: the sheet graph JSON scales to the input frame", "[durix][sheet_graph]") {
   const DurixResult r = run(durix::test::fixture("box"));
   const SheetGraph g = sheet_graph(r.medial);
-  std::ostringstream one, two;
-  write_sheet_graph_json(one, g, 1.0);
-  write_sheet_graph_json(two, g, 2.0);
+  SheetGraph twice = g;
+  twice.input_scale = 2.0;
+  std::ostringstream one, two, written;
+  write_sheet_graph_json(one, g);
+  write_sheet_graph_json(two, twice);
+  kSheetGraph.write(twice, written);
+  CHECK(written.str() == two.str());
   const auto a = nlohmann::json::parse(one.str()), b = nlohmann::json::parse(two.str());
   REQUIRE(a["sheets"].size() == g.sheets.size());
   REQUIRE(a["adjacency"].size() == g.adjacency.size());

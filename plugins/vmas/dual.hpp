@@ -4,6 +4,8 @@
 // adjacent pairs and skeleton triangles the 3-cliques {a < b < c}.
 #include <medax/geometry.hpp>
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace medax::vmas {
@@ -21,6 +23,10 @@ enum class TriangleRule {
                ///< vertices lie in the three clusters (meshes only)
   None,        ///< edges only
 };
+
+/// The name of each rule, as the `vmas_dual` stage's `triangles` parameter spells it.
+inline const std::vector<std::pair<std::string, TriangleRule>> kTriangleRules{
+    {"cliques", TriangleRule::Cliques}, {"restricted", TriangleRule::Restricted}, {"none", TriangleRule::None}};
 
 struct DualComplex {
   std::vector<Segment> edges;  ///< i < j, sorted

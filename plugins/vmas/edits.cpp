@@ -17,7 +17,7 @@ std::string trim(const std::string& s) {
 }
 
 [[noreturn]] void fail(const std::string& edit, const std::string& why) {
-  throw std::invalid_argument("vmas edits: '" + edit + "': " + why +
+  throw std::invalid_argument("edit '" + edit + "': " + why +
                               " (expected `split|remove|add X Y Z [after K|end]`)");
 }
 

@@ -71,20 +71,20 @@ std::vector<Segment> knn_edges(const std::vector<Vec3>& points, std::size_t k) {
 }
 
 std::shared_ptr<const VmasInput> VmasInput::from_mesh(const SurfaceMesh& mesh, const InputOptions& options) {
-  if (mesh.faces.empty()) throw std::invalid_argument("vmas: the mesh has no faces");
+  if (mesh.faces.empty()) throw std::invalid_argument("the mesh has no faces");
   std::shared_ptr<VmasInput> in(new VmasInput());
   in->kind = InputKind::Mesh;
   in->options = options;
   Box box;
   for (const Tri& f : mesh.faces)
     for (Index v : f) {
-      if (v >= mesh.vertices.size()) throw std::invalid_argument("vmas: a face refers to a missing vertex");
+      if (v >= mesh.vertices.size()) throw std::invalid_argument("a face refers to a missing vertex");
       box.add(mesh.vertices[v]);
     }
   in->origin = 0.5 * (box.lo + box.hi);
   in->scale = (box.hi - box.lo).maxCoeff();
   in->diagonal = (box.hi - box.lo).norm();
-  if (!(in->scale > 0)) throw std::invalid_argument("vmas: the mesh is degenerate (zero extent)");
+  if (!(in->scale > 0)) throw std::invalid_argument("the mesh is degenerate (zero extent)");
 
   const std::size_t n = mesh.vertices.size();
   SurfaceMesh local;
@@ -132,10 +132,10 @@ std::shared_ptr<const VmasInput> VmasInput::from_mesh(const SurfaceMesh& mesh, c
 
 std::shared_ptr<const VmasInput> VmasInput::from_samples(const OrientedSamples& samples, const InputOptions& options) {
   const std::size_t n = samples.points.size();
-  if (n < options.knn + 1) throw std::invalid_argument("vmas: too few samples for the kNN graph");
+  if (n < options.knn + 1) throw std::invalid_argument("too few samples for the kNN graph");
   if (samples.normals.size() != n)
-    throw std::invalid_argument("vmas: point-cloud input needs one normal per sample (shape.samples.normals)");
-  if (options.knn < 1) throw std::invalid_argument("vmas: knn_k must be at least 1");
+    throw std::invalid_argument("point-cloud input needs one normal per sample (shape.samples.normals)");
+  if (options.knn < 1) throw std::invalid_argument("knn_k must be at least 1");
   std::shared_ptr<VmasInput> in(new VmasInput());
   in->kind = InputKind::Cloud;
   in->options = options;
@@ -144,7 +144,7 @@ std::shared_ptr<const VmasInput> VmasInput::from_samples(const OrientedSamples& 
   in->origin = 0.5 * (box.lo + box.hi);
   in->scale = (box.hi - box.lo).maxCoeff();
   in->diagonal = (box.hi - box.lo).norm();
-  if (!(in->scale > 0)) throw std::invalid_argument("vmas: the samples are degenerate (zero extent)");
+  if (!(in->scale > 0)) throw std::invalid_argument("the samples are degenerate (zero extent)");
   in->points.resize(n);
   in->normals.resize(n);
   for (std::size_t v = 0; v < n; ++v) {

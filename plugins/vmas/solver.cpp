@@ -3,6 +3,8 @@
 #include "energy.hpp"
 #include "split.hpp"
 
+#include <medax/params.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -30,16 +32,16 @@ class Timer {
 
 VmasSolver::VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions options)
     : input_(std::move(input)), options_(options) {
-  if (!input_) throw std::invalid_argument("vmas: no input");
+  if (!input_) throw std::invalid_argument("no input");
   if (input_->vertex_balls.empty())
-    throw std::invalid_argument("vmas: the input was prepared without shrinking balls (InputOptions)");
+    throw std::invalid_argument("the input was prepared without shrinking balls (InputOptions)");
   if (options_.min_cluster_size < 1) options_.min_cluster_size = 1;
   // The first sphere: the largest shrinking ball (the authors' code; notes §2.8).
   Index best = 0;
   double best_r = -1;
   for (Index v = 0; v < input_->size(); ++v)
     if (input_->active(v) && input_->vertex_balls[v].radius > best_r) best_r = input_->vertex_balls[v].radius, best = v;
-  if (!(best_r > 0)) throw std::runtime_error("vmas: no shrinking ball could be computed on this input");
+  if (!(best_r > 0)) throw std::runtime_error("no shrinking ball could be computed on this input");
   push(input_->vertex_balls[best]);
   cluster_of_.assign(input_->size(), -1);
 }
@@ -178,29 +180,36 @@ IterationReport VmasSolver::step(bool allow_split) {
   const int period = std::max(1, options_.split_period);
   if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
     Timer t(times_.splits);
-    if (options_.correction == Correction::OnSplit) {
-      correct_all();
-      compute_stats();
-    }
-    SplitRound round;
-    round.count_mode = count_mode;
-    round.target = options_.target_spheres;
-    round.threshold = options_.error_threshold * s2;
-    round.fraction = options_.split_fraction;
-    round.max_per_round = options_.split_max_per_round;
-    std::vector<double> errors(stats_.size());
-    for (std::size_t i = 0; i < stats_.size(); ++i) errors[i] = stats_[i].error;
-    const Adjacency adj = cluster_adjacency(in.graph_edges, cluster_of_, spheres_.size());
-    for (Index i : select_splits(errors, adj, round)) {
-      const Sphere& ball = in.vertex_balls[stats_[i].split_vertex];
-      if (!(ball.radius > 0)) continue;
-      push(ball);
-      ++rep.splits;
-    }
+    rep.splits = split_round();
   }
   rep.spheres = spheres_.size();
   last_ = rep;
   return rep;
+}
+
+std::size_t VmasSolver::split_round() {
+  const VmasInput& in = *input_;
+  if (options_.correction == Correction::OnSplit) {
+    correct_all();
+    compute_stats();
+  }
+  SplitRound round;
+  round.count_mode = options_.stop_mode == StopMode::Count;
+  round.target = options_.target_spheres;
+  round.threshold = options_.error_threshold * (in.scale * in.scale);
+  round.fraction = options_.split_fraction;
+  round.max_per_round = options_.split_max_per_round;
+  std::vector<double> errors(stats_.size());
+  for (std::size_t i = 0; i < stats_.size(); ++i) errors[i] = stats_[i].error;
+  const Adjacency adj = cluster_adjacency(in.graph_edges, cluster_of_, spheres_.size());
+  std::size_t splits = 0;
+  for (Index i : select_splits(errors, adj, round)) {
+    const Sphere& ball = in.vertex_balls[stats_[i].split_vertex];
+    if (!(ball.radius > 0)) continue;
+    push(ball);
+    ++splits;
+  }
+  return splits;
 }
 
 IterationReport VmasSolver::iterate() { return step(true); }
@@ -237,7 +246,7 @@ void VmasSolver::refresh_after_edit() {
 
 std::size_t VmasSolver::index_of(SphereId id) const {
   const auto it = std::find(ids_.begin(), ids_.end(), id);
-  if (it == ids_.end()) throw std::out_of_range("vmas: no sphere with id " + std::to_string(id));
+  if (it == ids_.end()) throw std::out_of_range("no sphere with id " + std::to_string(id));
   return static_cast<std::size_t>(it - ids_.begin());
 }
 
@@ -255,9 +264,9 @@ SphereId VmasSolver::split_sphere(SphereId id) {
 }
 
 SphereId VmasSolver::add_sphere(Index vertex) {
-  if (vertex >= input_->size()) throw std::out_of_range("vmas: no input vertex " + std::to_string(vertex));
+  if (vertex >= input_->size()) throw std::out_of_range("no input vertex " + std::to_string(vertex));
   const Sphere& ball = input_->vertex_balls[vertex];
-  if (!(ball.radius > 0)) throw std::invalid_argument("vmas: vertex " + std::to_string(vertex) + " has no shrinking ball");
+  if (!(ball.radius > 0)) throw std::invalid_argument("vertex " + std::to_string(vertex) + " has no shrinking ball");
   const SphereId id = push(ball);
   refresh_after_edit();
   return id;
@@ -265,7 +274,7 @@ SphereId VmasSolver::add_sphere(Index vertex) {
 
 void VmasSolver::remove_sphere(SphereId id) {
   const std::size_t i = index_of(id);
-  if (spheres_.size() == 1) throw std::invalid_argument("vmas: cannot remove the last sphere");
+  if (spheres_.size() == 1) throw std::invalid_argument("cannot remove the last sphere");
   erase_sphere(i);
   refresh_after_edit();
 }
@@ -312,9 +321,9 @@ MedialComplex VmasSolver::complex(bool connect, TriangleRule rule) const {
   for (std::size_t i = 0; i < n && i < clusters_.count(); ++i)
     mc.generators[i].assign(clusters_.begin(i), clusters_.begin(i) + clusters_.size(i));
   mc.generator_kind = input_->kind == InputKind::Mesh ? "mesh_vertex" : "sample";
-  auto& error = mc.vertex_props.fields.add("vmas_error", n, 0.0);
-  auto& area = mc.vertex_props.fields.add("vmas_area", n, 0.0);
-  auto& id = mc.vertex_props.labels.add("vmas_id", n, 0);
+  auto& error = mc.add(kVmasError, 0.0);
+  auto& area = mc.add(kVmasArea, 0.0);
+  auto& id = mc.add(kVmasId, 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (i < stats_.size()) error[i] = stats_[i].error, area[i] = stats_[i].area;
     id[i] = static_cast<int>(ids_[i]);
@@ -334,11 +343,7 @@ std::string summary(const VmasOptions& o) {
   else
     out << "error threshold " << o.error_threshold << "·scale²";
   out << ", λ_partition " << o.lambda_partition << ", λ_update " << o.lambda_update << ", update "
-      << (o.sqem_rows == SqemRows::Paper ? "paper" : "author_code") << ", correction "
-      << (o.correction == Correction::Always    ? "always"
-          : o.correction == Correction::OnSplit ? "on_split"
-          : o.correction == Correction::End     ? "end"
-                                                : "off");
+      << choice_name(kSqemRows, o.sqem_rows) << ", correction " << choice_name(kCorrections, o.correction);
   return out.str();
 }
 

@@ -5,10 +5,10 @@
 #include <fmt/format.h>
 #include <tbb/task_arena.h>
 
-#include <ostream>
-
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <ostream>
 #include <stdexcept>
 
 namespace medax::vmas {
@@ -16,297 +16,314 @@ namespace medax::vmas {
 namespace {
 constexpr const char* kDoc = "docs/plugins/vmas.md";
 
-bool use_mesh(const Shape& shape, const std::string& input) {
-  if (input == "mesh") return true;
-  if (input == "samples") return false;
+bool use_mesh(const Shape& shape, Surface surface) {
+  if (surface == Surface::Mesh) return true;
+  if (surface == Surface::Samples) return false;
   return !shape.mesh.empty();
+}
+
+double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+/// The scripted edits not applied yet, in order, and when the last one was applied.
+class EditSchedule {
+ public:
+  /// `to_working` maps the script's points to the shape's frame (none: they are in it already).
+  EditSchedule(std::vector<Edit> edits, std::optional<Similarity> to_working)
+      : edits_(std::move(edits)), to_working_(std::move(to_working)) {}
+
+  /// Applies, and logs, the edits due once `completed` iterations are done (every one left when
+  /// `all`, with a warning for those whose iteration the run never reached).
+  void apply_due(VmasSolver& solver, int completed, bool all, Context& ctx) {
+    while (next_ < edits_.size() &&
+           (all || (edits_[next_].after != Edit::kEnd && edits_[next_].after <= completed))) {
+      const Edit& e = edits_[next_++];
+      if (all && e.after != Edit::kEnd && e.after > completed)
+        ctx.warn(fmt::format("the run stopped after {} iterations, before edit '{}'; applying it now", completed,
+                             e.text));
+      const Vec3 p = to_working_ ? to_working_->apply(e.point) : e.point;
+      ctx.info(apply_edit(solver, e, p));
+      last_applied_ = solver.iterations();
+    }
+  }
+  /// The solver's iteration count when the last edit was applied (−1: none yet).
+  int last_applied() const { return last_applied_; }
+
+ private:
+  std::vector<Edit> edits_;
+  std::optional<Similarity> to_working_;
+  std::size_t next_ = 0;
+  int last_applied_ = -1;
+};
+
+/// The stop criterion's target: the sphere count (count mode) or every cluster error below the
+/// threshold (error mode, `threshold` absolute).
+bool target_met(const VmasSolver& solver, const IterationReport& rep, double threshold) {
+  return solver.options().stop_mode == StopMode::Count ? solver.size() >= solver.options().target_spheres
+                                                       : rep.max_error < threshold;
+}
+
+/// Says why the run stopped when it did not stop at its criterion.
+void warn_if_stopped_early(const VmasSolver& solver, const IterationReport& rep, double threshold, Context& ctx) {
+  const VmasOptions& options = solver.options();
+  const bool met = target_met(solver, rep, threshold);
+  if (rep.stalled)
+    ctx.warn(fmt::format("no progress for {} iterations, stopping with {} spheres{}", options.stall_iterations,
+                         solver.size(),
+                         met ? " (the spheres oscillate; see the paper's §5)"
+                             : " before the target: spheres added by splits keep losing their clusters (fewer than "
+                               "min_cluster_size vertices). The mesh is too coarse for this many spheres (the authors "
+                               "recommend |M| <= |V|/100): refine or resample it"));
+  else if (!(rep.converged && met))
+    ctx.warn(fmt::format("reached max_iterations ({}) before the stop criterion", options.max_iterations));
+}
+
+/// `<id>_trace.csv`: one row per iteration.
+void write_trace(const std::vector<IterationReport>& trace, double scale, Context& ctx) {
+  const double s2 = scale * scale;
+  ctx.write_output(ctx.stage_id() + "_trace.csv", [&](std::ostream& out) {
+    out << "iteration,spheres,splits,culled,converged,total_error,max_error,energy_partition,energy,"
+           "total_error_unit_box,max_error_unit_box\n";
+    for (const IterationReport& r : trace)
+      out << fmt::format("{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", r.iteration, r.spheres,
+                         r.splits, r.culled, r.converged ? 1 : 0, r.total_error, r.max_error, r.energy_partition,
+                         r.energy, r.total_error / s2, r.max_error / s2);
+  });
 }
 }  // namespace
 
 // ---- vmas ------------------------------------------------------------------------------------
 
 StageInfo VmasStage::describe() {
-  using P = ParamSpec;
   return {"vmas",
           "Variational medial axis sampling (Huang et al. 2024): SQEM + Euclidean partition, "
           "Gauss-Newton spheres, shrinking-ball correction, coarse-to-fine splits, scripted edits",
-          kDoc,
-          {P::choice("input", "auto", {"auto", "mesh", "samples"},
-                     "What to sample: the mesh's vertices, the oriented samples (point cloud), or the mesh "
-                     "when there is one"),
-           P::choice("stop_mode", "count", {"count", "error"},
-                     "Stop at `target_spheres` spheres, or when every cluster error is below `error_threshold`"),
-           P::integer("target_spheres", 100, "Sphere count of the count mode").at_least(1),
-           P::real("error_threshold", 2.5e-4,
-                   "Cluster error E(C) (eq. 12) below which a cluster is not split (error mode)")
-               .at_least(0)
-               .in_unit("scale²"),
-           P::real("lambda_partition", 0.2, "λ of the partition and cluster errors (eq. 8)").at_least(0),
-           P::real("lambda_update", 0.2, "λ of the sphere update (eq. 11)").at_least(0),
-           P::choice("sqem_row_mode", "paper", {"paper", "author_code"},
-                     "Update energy: the paper's sum of plane quadrics with Euclidean weight λ, or the "
-                     "authors' code (one summed SQEM row per vertex, Euclidean weight λ²)"),
-           P::choice("correction", "always", {"always", "on_split", "end", "off"},
-                     "When spheres are projected back onto the medial axis by a shrinking ball"),
-           P::choice("update_scope", "local", {"local", "full"},
-                     "Spheres updated per iteration: those whose cluster changed (plus new and unconverged "
-                     "ones; the others keep their exact values), or every sphere"),
-           P::real("converge_eps", 1e-5, "Converged when the total error changes by less than this")
-               .at_least(0)
-               .in_unit("scale²"),
-           P::integer("split_period", 10, "A split round also runs every this many iterations").at_least(1),
-           P::real("split_fraction", 0.2, "At most ceil(fraction·|M|) splits per round").range(0, 1),
-           P::integer("split_max_per_round", 10, "... and at most this many").at_least(1),
-           P::integer("min_cluster_size", 4, "Spheres whose cluster has fewer vertices are deleted").at_least(1),
-           P::integer("gn_max_iters", 10, "Gauss-Newton iterations per update").at_least(1),
-           P::real("gn_tol", 1e-6, "Gauss-Newton stops when the step is shorter").at_least(0).in_unit("scale"),
-           P::integer("knn_k", 6, "k of the kNN graph and diffused quadrics (point-cloud input)").at_least(1),
-           P::real("sb_initial_radius", 1.0, "Initial shrinking-ball radius").at_least(0).in_unit("bbox diagonal"),
-           P::integer("sb_max_iters", 30, "Shrinking-ball iterations").at_least(1),
-           P::real("sb_angle_deg", 20.0, "Shrinking-ball denoising angle").range(0, 90).in_unit("degree"),
-           P::integer("max_iterations", 1000, "Iteration cap").at_least(1),
-           P::integer("stall_iterations", 100,
-                      "Stop when neither the sphere count nor the total error has improved for this many "
-                      "iterations (0: never)")
-               .at_least(0),
-           P::text("edits", "",
-                   "Scripted edits, one per line or ';': `split|remove|add X Y Z [after K|end]` (split or "
-                   "remove the sphere nearest to the point, add the shrinking ball of the nearest surface "
-                   "vertex), after K iterations or at the end"),
-           P::choice("edit_frame", "input", {"input", "working"},
-                     "Frame of the edit points: the input file's coordinates, or the shape's current frame"),
-           P::integer("relax_iterations", 10, "Iterations without splits after edits applied at the end")
-               .at_least(0),
-           P::boolean("trace", false,
-                      "Write <id>_trace.csv to the run folder: per iteration the sphere count, splits, culls, "
-                      "total and largest cluster error and the energy")}};
+          kDoc};
 }
 
-VmasOptions VmasStage::solver_options(const ParamSet& p) {
-  VmasOptions o;
-  o.lambda_partition = p.real("lambda_partition");
-  o.lambda_update = p.real("lambda_update");
-  o.sqem_rows = p.text("sqem_row_mode") == "paper" ? SqemRows::Paper : SqemRows::AuthorCode;
-  o.stop_mode = p.text("stop_mode") == "count" ? StopMode::Count : StopMode::Error;
-  o.target_spheres = static_cast<std::size_t>(p.integer("target_spheres"));
-  o.error_threshold = p.real("error_threshold");
-  o.converge_eps = p.real("converge_eps");
-  o.split_period = static_cast<int>(p.integer("split_period"));
-  o.split_fraction = p.real("split_fraction");
-  o.split_max_per_round = static_cast<std::size_t>(p.integer("split_max_per_round"));
-  o.min_cluster_size = static_cast<std::size_t>(p.integer("min_cluster_size"));
-  o.gn_max_iterations = static_cast<int>(p.integer("gn_max_iters"));
-  o.gn_tolerance = p.real("gn_tol");
-  const std::string& c = p.text("correction");
-  o.correction = c == "always" ? Correction::Always
-                 : c == "on_split" ? Correction::OnSplit
-                 : c == "end" ? Correction::End
-                              : Correction::Off;
-  o.update_scope = p.text("update_scope") == "local" ? UpdateScope::Local : UpdateScope::Full;
-  o.max_iterations = static_cast<int>(p.integer("max_iterations"));
-  o.stall_iterations = static_cast<int>(p.integer("stall_iterations"));
-  return o;
+void VmasStage::declare(ParamBinder& p) {
+  VmasOptions& o = options_;
+  InputOptions& in = input_options_;
+  p.add("input", input_, kSurfaces,
+        "What to sample: the mesh's vertices, the oriented samples (point cloud), or the mesh when there is one");
+  p.add("stop_mode", o.stop_mode, kStopModes,
+        "Stop at `target_spheres` spheres, or when every cluster error is below `error_threshold`");
+  p.add("target_spheres", o.target_spheres,
+        "Sphere count of the count mode (the CGAL port's default; the paper uses Table 1's counts)")
+      .at_least(1);
+  p.add("error_threshold", o.error_threshold,
+        "Cluster error E(C) (eq. 12) below which a cluster is not split (error mode; the authors' default)")
+      .at_least(0)
+      .in_unit("scale²");
+  p.add("lambda_partition", o.lambda_partition, "λ of the partition and cluster errors (eq. 8)").at_least(0);
+  p.add("lambda_update", o.lambda_update, "λ of the sphere update (eq. 11)").at_least(0);
+  p.add("sqem_row_mode", o.sqem_rows, kSqemRows,
+        "Update energy: the paper's sum of plane quadrics with Euclidean weight λ, or the authors' code (one "
+        "summed SQEM row per vertex, Euclidean weight λ²)");
+  p.add("correction", o.correction, kCorrections,
+        "When spheres are projected back onto the medial axis by a shrinking ball");
+  p.add("update_scope", o.update_scope, kUpdateScopes,
+        "Spheres updated per iteration: those whose cluster changed since their last update, new ones and those "
+        "whose last Gauss-Newton solve hit `gn_max_iters` (the others keep their exact values); or every sphere");
+  p.add("converge_eps", o.converge_eps, "Converged when the total error changes by less than this")
+      .at_least(0)
+      .in_unit("scale²");
+  p.add("split_period", o.split_period, "A split round also runs every this many iterations").at_least(1);
+  p.add("split_fraction", o.split_fraction, "At most ceil(fraction·|M|) splits per round").range(0, 1);
+  p.add("split_max_per_round", o.split_max_per_round, "... and at most this many").at_least(1);
+  p.add("min_cluster_size", o.min_cluster_size, "Spheres whose cluster has fewer vertices are deleted").at_least(1);
+  p.add("gn_max_iters", o.gn_max_iterations, "Gauss-Newton iterations per update").at_least(1);
+  p.add("gn_tol", o.gn_tolerance, "Gauss-Newton stops when the step is shorter").at_least(0).in_unit("scale");
+  p.add("knn_k", in.knn, "k of the kNN graph and diffused quadrics (point-cloud input)").at_least(1);
+  p.add("sb_initial_radius", in.sb_initial_radius, "Initial shrinking-ball radius r0").at_least(0).in_unit(
+      "bbox diagonal");
+  p.add("sb_max_iters", in.sb_max_iterations, "Shrinking-ball iterations").at_least(1);
+  p.add("sb_angle_deg", in.sb_angle_deg, "Shrinking-ball denoising angle").range(0, 90).in_unit("degree");
+  p.add("max_iterations", o.max_iterations, "Iteration cap (warns when reached)").at_least(1);
+  p.add("stall_iterations", o.stall_iterations,
+        "Stop, with a warning that says why, when neither the sphere count nor the total error has improved for "
+        "this many iterations (0: never; not in the paper)")
+      .at_least(0);
+  p.add("edits", edits_,
+        "Scripted edits, one per line or ';': `split|remove|add X Y Z [after K|end]` (split or remove the sphere "
+        "nearest to the point, add the shrinking ball of the nearest surface vertex), after K iterations or at "
+        "the end");
+  p.add("edit_frame", edit_frame_, {{"input", EditFrame::Input}, {"working", EditFrame::Working}},
+        "Frame of the edit points: the input file's coordinates, or the shape's current frame");
+  p.add("relax_iterations", relax_iterations_, "Iterations without splits after edits applied at the end")
+      .at_least(0);
+  p.add("trace", trace_,
+        "Write <id>_trace.csv to the run folder: per iteration the sphere count, splits, culls, total and largest "
+        "cluster error and the energy");
 }
 
-InputOptions VmasStage::input_options(const ParamSet& p) {
-  InputOptions o;
-  o.knn = static_cast<std::size_t>(p.integer("knn_k"));
-  o.sb_initial_radius = p.real("sb_initial_radius");
-  o.sb_max_iterations = static_cast<int>(p.integer("sb_max_iters"));
-  o.sb_angle_deg = p.real("sb_angle_deg");
-  return o;
-}
-
-std::shared_ptr<const VmasInput> VmasStage::make_input(const Shape& shape, const std::string& input,
+std::shared_ptr<const VmasInput> VmasStage::make_input(const Shape& shape, Surface surface,
                                                        const InputOptions& options) {
-  return use_mesh(shape, input) ? VmasInput::from_mesh(shape.mesh, options)
-                                : VmasInput::from_samples(shape.samples, options);
+  return use_mesh(shape, surface) ? VmasInput::from_mesh(shape.mesh, options)
+                                  : VmasInput::from_samples(shape.samples, options);
 }
 
-void VmasStage::prepare(const Scene& scene) const {
-  const std::string& input = params().text("input");
+void VmasStage::check_scene(const Scene& scene) const {
   const Shape& shape = scene.shape;
-  if (use_mesh(shape, input)) {
-    if (shape.mesh.empty()) throw std::invalid_argument("vmas: `input: mesh` but the shape has no mesh");
+  if (use_mesh(shape, input_)) {
+    if (shape.mesh.empty()) throw std::invalid_argument("`input: mesh` but the shape has no mesh");
   } else {
     if (shape.samples.empty())
-      throw std::invalid_argument("vmas: no oriented samples to sample from; add a `sample` conditioning stage "
-                                  "before vmas or use `input: mesh`");
+      throw std::invalid_argument("no oriented samples to sample from; add a `sample` conditioning stage before "
+                                  "vmas or use `input: mesh`");
     if (shape.samples.normals.size() != shape.samples.size())
-      throw std::invalid_argument("vmas: the samples have no normals; VMAS needs oriented samples");
+      throw std::invalid_argument("the samples have no normals; VMAS needs oriented samples");
   }
 }
 
 void VmasStage::check_params() const {
-  parse_edits(params().text("edits"));  // a bad script is reported by `medax validate`
+  parse_edits(edits_);  // a bad script is reported by `medax validate`
 }
 
 MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const VmasOptions options = solver_options(params());
-  const auto input = make_input(shape, params().text("input"), input_options(params()));
-  const auto t1 = std::chrono::steady_clock::now();
-  ctx.info(fmt::format("vmas: {} {} ({} graph edges), scale {:.4g}; {}", input->size(),
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const auto input = make_input(shape, input_, input_options_);
+  const auto t1 = Clock::now();
+  ctx.info(fmt::format("{} {} ({} graph edges), scale {:.4g}; {}", input->size(),
                        input->kind == InputKind::Mesh ? "mesh vertices" : "samples", input->graph_edges.size(),
-                       input->scale, summary(options)));
-  VmasSolver solver(input, options);
+                       input->scale, summary(options_)));
+  VmasSolver solver(input, options_);
+  EditSchedule edits(parse_edits(edits_), edit_frame_ == EditFrame::Input
+                                              ? std::optional<Similarity>(shape.to_input.inverse())
+                                              : std::nullopt);
+  edits.apply_due(solver, 0, false, ctx);
 
-  const std::vector<Edit> edits = parse_edits(params().text("edits"));
-  const bool input_frame = params().text("edit_frame") == "input";
-  const Similarity to_working = shape.to_input.inverse();
-  std::size_t next = 0;
-  int last_edit_at = -1;
-  const auto apply_due = [&](int completed, bool all) {
-    while (next < edits.size() && (all || (edits[next].after != Edit::kEnd && edits[next].after <= completed))) {
-      const Edit& e = edits[next++];
-      if (all && e.after != Edit::kEnd && e.after > completed)
-        ctx.warn(fmt::format("vmas: the run stopped after {} iterations, before edit '{}'; applying it now",
-                             completed, e.text));
-      const Vec3 p = input_frame ? to_working.apply(e.point) : e.point;
-      ctx.info("vmas: " + apply_edit(solver, e, p));
-      last_edit_at = solver.iterations();
-    }
-  };
-  apply_due(0, false);
-  const bool count_mode = options.stop_mode == StopMode::Count;
-  const double threshold = options.error_threshold * input->scale * input->scale;
+  // The optimisation, with the edits due on the way.
+  const double threshold = options_.error_threshold * input->scale * input->scale;
   std::vector<IterationReport> trace;
-  const bool tracing = params().boolean("trace");
   const IterationReport rep = solver.run([&](const IterationReport& r) {
     ctx.check_cancelled();
-    if (tracing) trace.push_back(r);
-    const double fraction = count_mode ? static_cast<double>(r.spheres) / static_cast<double>(options.target_spheres)
-                                       : (r.max_error > 0 ? threshold / r.max_error : 1.0);
+    if (trace_) trace.push_back(r);
+    const double fraction = options_.stop_mode == StopMode::Count
+                                ? static_cast<double>(r.spheres) / static_cast<double>(options_.target_spheres)
+                                : (r.max_error > 0 ? threshold / r.max_error : 1.0);
     ctx.progress(std::min(1.0, fraction), fmt::format("{} spheres", r.spheres));
-    apply_due(r.iteration, false);
+    edits.apply_due(solver, r.iteration, false, ctx);
     return true;
   });
-  const bool target_met = count_mode ? solver.size() >= options.target_spheres : rep.max_error < threshold;
-  if (rep.stalled)
-    ctx.warn(fmt::format("vmas: no progress for {} iterations, stopping with {} spheres{}", options.stall_iterations,
-                         solver.size(),
-                         target_met ? " (the spheres oscillate; see the paper's §5)"
-                                    : " before the target: spheres added by splits keep losing their clusters (fewer "
-                                      "than min_cluster_size vertices). The mesh is too coarse for this many spheres "
-                                      "(the authors recommend |M| <= |V|/100): refine or resample it"));
-  else if (!(rep.converged && target_met))
-    ctx.warn(fmt::format("vmas: reached max_iterations ({}) before the stop criterion", options.max_iterations));
-  apply_due(solver.iterations(), true);
-  if (last_edit_at == solver.iterations())
-    for (long long i = 0; i < params().integer("relax_iterations"); ++i) {
+  warn_if_stopped_early(solver, rep, threshold, ctx);
+
+  // The edits left, then iterations without splits to let them settle.
+  edits.apply_due(solver, solver.iterations(), true, ctx);
+  if (edits.last_applied() == solver.iterations())
+    for (int i = 0; i < relax_iterations_; ++i) {
       ctx.check_cancelled();
       const IterationReport r = solver.relax();
-      if (tracing) trace.push_back(r);
+      if (trace_) trace.push_back(r);
     }
   solver.finish();
-  if (tracing) {
-    const double s2 = input->scale * input->scale;
-    ctx.write_output((id().empty() ? std::string("vmas") : id()) + "_trace.csv", [&](std::ostream& out) {
-      out << "iteration,spheres,splits,culled,converged,total_error,max_error,energy_partition,energy,"
-             "total_error_unit_box,max_error_unit_box\n";
-      for (const IterationReport& r : trace)
-        out << fmt::format("{},{},{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", r.iteration, r.spheres,
-                           r.splits, r.culled, r.converged ? 1 : 0, r.total_error, r.max_error, r.energy_partition,
-                           r.energy, r.total_error / s2, r.max_error / s2);
-    });
-  }
-  const auto t2 = std::chrono::steady_clock::now();
+  if (trace_) write_trace(trace, input->scale, ctx);
+
+  const auto t2 = Clock::now();
   const IterationReport& last = solver.last_report();
   const PhaseTimes& ph = solver.times();
-  ctx.info(fmt::format("vmas: {} spheres after {} iterations; E_tot {:.4g}, max E(C) {:.4g} ({:.3g}·scale²); "
-                       "{} threads: precompute {:.3f} s, optimisation {:.3f} s (partition {:.3f}, update {:.3f}, "
-                       "correction {:.3f}, errors {:.3f}, splits {:.3f}, edits {:.3f})",
+  ctx.info(fmt::format("{} spheres after {} iterations; E_tot {:.4g}, max E(C) {:.4g} ({:.3g}·scale²); {} threads: "
+                       "precompute {:.3f} s, optimisation {:.3f} s (partition {:.3f}, update {:.3f}, correction "
+                       "{:.3f}, errors {:.3f}, splits {:.3f}, edits {:.3f})",
                        solver.size(), solver.iterations(), last.total_error, last.max_error,
                        last.max_error / (input->scale * input->scale), tbb::this_task_arena::max_concurrency(),
-                       std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t2 - t1).count(),
-                       ph.partition, ph.update, ph.correction, ph.errors, ph.splits, ph.edits));
+                       seconds(t1 - t0), seconds(t2 - t1), ph.partition, ph.update, ph.correction, ph.errors,
+                       ph.splits, ph.edits));
   return solver.complex(false);
 }
 
 // ---- vmas_dual -------------------------------------------------------------------------------
 
 StageInfo VmasDualStage::describe() {
-  using P = ParamSpec;
   return {"vmas_dual",
           "VMAS connectivity: an edge where two clusters touch, a triangle per three mutually adjacent "
           "clusters (the dual of the partition)",
-          kDoc,
-          {P::choice("triangles", "cliques", {"cliques", "restricted", "none"},
-                     "Triangles: every 3-clique (the paper), only cliques realised by a surface triangle "
-                     "spanning three clusters (meshes), or none"),
-           P::choice("input", "auto", {"auto", "mesh", "samples"},
-                     "Surface the clusters live on when the complex carries none (auto: the mesh if any)"),
-           P::real("lambda_partition", 0.2,
-                   "λ of eq. 8 when the complex carries no clusters and they are recomputed from the spheres")
-               .at_least(0),
-           P::integer("knn_k", 6, "k of the kNN graph for point-cloud clusters (as in vmas)").at_least(1)}};
+          kDoc};
 }
 
-void VmasDualStage::prepare(const Scene& scene) const {
-  ConnectivityStage::prepare(scene);
+void VmasDualStage::declare(ParamBinder& p) {
+  p.add("triangles", triangles_, kTriangleRules,
+        "Triangles: every 3-clique (the paper), only cliques realised by a surface triangle spanning three "
+        "clusters (meshes), or none");
+  p.add("input", input_, kSurfaces,
+        "Surface the clusters live on when the complex carries none (auto: the mesh if any)");
+  p.add("lambda_partition", lambda_partition_,
+        "λ of eq. 8 when the complex carries no clusters and they are recomputed from the spheres")
+      .at_least(0);
+  p.add("knn_k", input_options_.knn, "k of the kNN graph for point-cloud clusters (as in vmas)").at_least(1);
+}
+
+void VmasDualStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.empty() && scene.shape.samples.empty())
-    throw std::invalid_argument("vmas_dual: the shape has neither a mesh nor samples to take adjacency from");
-  if (params().text("triangles") == "restricted" && scene.shape.mesh.empty())
-    throw std::invalid_argument("vmas_dual: `triangles: restricted` needs a mesh; use `cliques` for point clouds");
+    throw std::invalid_argument("the shape has neither a mesh nor samples to take adjacency from");
+  if (triangles_ == TriangleRule::Restricted && scene.shape.mesh.empty())
+    throw std::invalid_argument("`triangles: restricted` needs a mesh; use `cliques` for point clouds");
+}
+
+namespace {
+/// cluster_of (over the n surface points) from the complex's generators, each point in the first
+/// cluster that lists it; nothing when a generator is not one of the n points.
+std::optional<std::vector<int>> clusters_from_generators(const MedialComplex& medial, std::size_t n) {
+  std::vector<int> cluster_of(n, -1);
+  for (std::size_t i = 0; i < medial.num_vertices(); ++i)
+    for (Index v : medial.generators[i]) {
+      if (v >= n) return std::nullopt;
+      if (cluster_of[v] < 0) cluster_of[v] = static_cast<int>(i);
+    }
+  return cluster_of;
+}
+}  // namespace
+
+std::vector<Segment> VmasDualStage::recompute_clusters(const Shape& shape, bool on_mesh, MedialComplex& medial,
+                                                       std::vector<int>& cluster_of) const {
+  const std::size_t count = medial.num_vertices();
+  const auto in = on_mesh ? VmasInput::from_mesh(shape.mesh, input_options_)
+                          : VmasInput::from_samples(shape.samples, input_options_);
+  std::vector<Sphere> spheres(count);
+  for (std::size_t i = 0; i < count; ++i) spheres[i] = {medial.centres[i] - in->origin, medial.radii[i]};
+  assign_vertices(*in, spheres, lambda_partition_, cluster_of);
+  medial.generators.assign(count, {});
+  for (Index v = 0; v < cluster_of.size(); ++v)
+    if (cluster_of[v] >= 0) medial.generators[static_cast<std::size_t>(cluster_of[v])].push_back(v);
+  medial.generator_kind = on_mesh ? "mesh_vertex" : "sample";
+  return in->graph_edges;
 }
 
 void VmasDualStage::connect(const Shape& shape, MedialComplex& medial, Context& ctx) {
   const std::size_t count = medial.num_vertices();
-  const std::string& rule_text = params().text("triangles");
-  const TriangleRule rule = rule_text == "cliques"      ? TriangleRule::Cliques
-                            : rule_text == "restricted" ? TriangleRule::Restricted
-                                                        : TriangleRule::None;
-  const std::size_t k = static_cast<std::size_t>(params().integer("knn_k"));
-  // The clusters: the extraction's generators when they are VMAS clusters of this shape ...
-  bool on_mesh = use_mesh(shape, params().text("input"));
+  // The surface of the clusters: the generators' when they say, else as `input` says.
+  bool on_mesh = use_mesh(shape, input_);
   if (medial.generator_kind == "mesh_vertex") on_mesh = true;
   if (medial.generator_kind == "sample") on_mesh = false;
-  if (on_mesh && shape.mesh.empty()) throw std::invalid_argument("vmas_dual: the clusters are on a mesh but the shape has none");
+  if (on_mesh && shape.mesh.empty()) throw std::invalid_argument("the clusters are on a mesh but the shape has none");
   if (!on_mesh && shape.samples.empty())
-    throw std::invalid_argument("vmas_dual: the clusters are on samples but the shape has none");
+    throw std::invalid_argument("the clusters are on samples but the shape has none");
   const std::size_t n = on_mesh ? shape.mesh.vertices.size() : shape.samples.size();
-  std::vector<int> cluster_of(n, -1);
-  bool have = medial.generators.size() == count && count > 0 &&
-              (medial.generator_kind == "mesh_vertex" || medial.generator_kind == "sample");
-  if (have) {
-    for (std::size_t i = 0; i < count && have; ++i)
-      for (Index v : medial.generators[i]) {
-        if (v >= n) {
-          have = false;
-          break;
-        }
-        if (cluster_of[v] < 0) cluster_of[v] = static_cast<int>(i);
-      }
-    if (!have) ctx.warn("vmas_dual: the generators do not index this shape; recomputing the clusters");
-  }
+
+  // The clusters: the extraction's generators when they are VMAS clusters of this shape, or the
+  // partition of eq. 8 recomputed from the spheres (e.g. another extractor's).
+  const bool listed = medial.generators.size() == count && count > 0 &&
+                      (medial.generator_kind == "mesh_vertex" || medial.generator_kind == "sample");
+  std::optional<std::vector<int>> given = listed ? clusters_from_generators(medial, n) : std::nullopt;
+  if (listed && !given) ctx.warn("the generators do not index this shape; recomputing the clusters");
+  std::vector<int> cluster_of;
   std::vector<Segment> graph;
-  if (!have) {
-    // ... or the partition of eq. 8 recomputed from the spheres (e.g. another extractor's).
-    std::fill(cluster_of.begin(), cluster_of.end(), -1);
-    InputOptions io;
-    io.knn = k;
-    io.shrinking_balls = false;
-    const auto in = on_mesh ? VmasInput::from_mesh(shape.mesh, io) : VmasInput::from_samples(shape.samples, io);
-    std::vector<Sphere> spheres(count);
-    for (std::size_t i = 0; i < count; ++i) spheres[i] = {medial.centres[i] - in->origin, medial.radii[i]};
-    assign_vertices(*in, spheres, params().real("lambda_partition"), cluster_of);
-    medial.generators.assign(count, {});
-    for (Index v = 0; v < n; ++v)
-      if (cluster_of[v] >= 0) medial.generators[static_cast<std::size_t>(cluster_of[v])].push_back(v);
-    medial.generator_kind = on_mesh ? "mesh_vertex" : "sample";
-    graph = in->graph_edges;
-    ctx.info("vmas_dual: clusters recomputed from the spheres (eq. 8)");
+  if (given) {
+    cluster_of = std::move(*given);
+    graph = on_mesh ? mesh_edges(shape.mesh.faces) : knn_edges(shape.samples.points, input_options_.knn);
   } else {
-    graph = on_mesh ? mesh_edges(shape.mesh.faces) : knn_edges(shape.samples.points, k);
+    graph = recompute_clusters(shape, on_mesh, medial, cluster_of);
+    ctx.info("clusters recomputed from the spheres (eq. 8)");
   }
-  const DualComplex d = dual_complex(cluster_adjacency(graph, cluster_of, count), rule,
+
+  const DualComplex d = dual_complex(cluster_adjacency(graph, cluster_of, count), triangles_,
                                      on_mesh ? shape.mesh.faces : std::vector<Tri>{}, cluster_of);
   medial.edges = d.edges;
   medial.faces = d.faces;
   medial.edge_props = {};
   medial.face_props = {};
-  ctx.info(fmt::format("vmas_dual: {} spheres, {} edges, {} triangles ({})", count, d.edges.size(), d.faces.size(),
-                       rule_text));
+  ctx.info(fmt::format("{} spheres, {} edges, {} triangles ({})", count, d.edges.size(), d.faces.size(),
+                       choice_name(kTriangleRules, triangles_)));
 }
 
 }  // namespace medax::vmas

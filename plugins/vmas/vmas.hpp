@@ -24,10 +24,11 @@
 #include <medax/medial_complex.hpp>
 
 #include <cstdint>
-#include <limits>
-#include <string>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace medax::vmas {
@@ -47,6 +48,24 @@ enum class UpdateScope {
           ///< Gauss–Newton solve hit the iteration cap; the others keep their exact values
   Full,   ///< every sphere, every iteration
 };
+
+/// The name of each choice, as the `vmas` stage's parameters and the log spell it.
+inline const std::vector<std::pair<std::string, StopMode>> kStopModes{{"count", StopMode::Count},
+                                                                      {"error", StopMode::Error}};
+inline const std::vector<std::pair<std::string, SqemRows>> kSqemRows{{"paper", SqemRows::Paper},
+                                                                      {"author_code", SqemRows::AuthorCode}};
+inline const std::vector<std::pair<std::string, Correction>> kCorrections{{"always", Correction::Always},
+                                                                          {"on_split", Correction::OnSplit},
+                                                                          {"end", Correction::End},
+                                                                          {"off", Correction::Off}};
+inline const std::vector<std::pair<std::string, UpdateScope>> kUpdateScopes{{"local", UpdateScope::Local},
+                                                                            {"full", UpdateScope::Full}};
+
+/// The vertex columns of VmasSolver::complex(): the cluster error E(C) (eq. 12), the cluster
+/// area A(C), and the stable sphere id.
+inline const Property<double> kVmasError{Element::Vertex, "vmas_error"};
+inline const Property<double> kVmasArea{Element::Vertex, "vmas_area"};
+inline const Property<int> kVmasId{Element::Vertex, "vmas_id"};
 
 struct VmasOptions {
   double lambda_partition = 0.2;  ///< λ in eq. 8 (partition and cluster errors)
@@ -146,7 +165,7 @@ class VmasSolver {
   const VmasOptions& options() const { return options_; }
   const PhaseTimes& times() const { return times_; }
   /// Spheres (centres in the input frame), generators = clusters (mesh vertices or samples),
-  /// vertex fields `vmas_error`, `vmas_area`, label `vmas_id`; with `connect`, the dual's edges
+  /// vertex columns kVmasError, kVmasArea, kVmasId; with `connect`, the dual's edges
   /// and triangles.
   MedialComplex complex(bool connect = false, TriangleRule rule = TriangleRule::Cliques) const;
 
@@ -156,6 +175,9 @@ class VmasSolver {
   void compute_stats();
   void update_spheres();  ///< Gauss–Newton (+ correction) of the spheres due, by update_scope
   void correct_all();
+  /// A split round (notes §2.9): new spheres at the max-error vertices of the clusters chosen by
+  /// select_splits; returns how many were added.
+  std::size_t split_round();
   /// Replaces sphere i, noting whether it moved (the next partition tests only moved spheres).
   void set_sphere(std::size_t i, const Sphere& s);
   void erase_sphere(std::size_t i);

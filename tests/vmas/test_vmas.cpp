@@ -16,6 +16,7 @@
 #include <medax/services/inside.hpp>
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
+#include <medax/union_find.hpp>
 #include <test_paths.hpp>
 
 #include <Eigen/Geometry>
@@ -26,7 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numeric>
+#include <limits>
 #include <set>
 
 using namespace medax;
@@ -62,18 +63,10 @@ VmasSolver solve(const SurfaceMesh& mesh, const VmasOptions& o) {
 double diagonal(const SurfaceMesh& m) { return bbox_diagonal(m.vertices); }
 
 std::size_t components(std::size_t n, const std::vector<Segment>& edges, const std::vector<Tri>& faces) {
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
-  const auto find = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  const auto unite = [&](std::size_t a, std::size_t b) { parent[find(a)] = find(b); };
-  for (const Segment& e : edges) unite(e[0], e[1]);
-  for (const Tri& f : faces) unite(f[0], f[1]), unite(f[1], f[2]);
-  std::size_t c = 0;
-  for (std::size_t i = 0; i < n; ++i) c += find(i) == i;
-  return c;
+  UnionFind sets(n);
+  for (const Segment& e : edges) sets.unite(e[0], e[1]);
+  for (const Tri& f : faces) sets.unite(f[0], f[1]), sets.unite(f[1], f[2]);
+  return sets.count();
 }
 
 /// b1 over Z/2 of the 2-complex (vertices, edges, triangles whose sides are all in `edges`).
@@ -111,9 +104,10 @@ std::vector<Sphere> local_spheres(const VmasSolver& s) {
   return out;
 }
 
-MedialComplex run_stage(ExtractionStage& stage, const std::vector<ParamSpec>& specs, const Shape& shape,
-                        const std::map<std::string, ParamValue>& changes) {
-  ParamSet params = default_params(specs);
+/// Runs a fresh vmas stage (at its defaults) with `changes` on `shape`.
+MedialComplex run_stage(const Shape& shape, const std::map<std::string, ParamValue>& changes) {
+  VmasStage stage;
+  ParamSet params;
   for (const auto& [k, v] : changes) params.set(k, v);
   stage.configure(params);
   Scene scene;
@@ -125,7 +119,7 @@ MedialComplex run_stage(ExtractionStage& stage, const std::vector<ParamSpec>& sp
 
 void run_dual(MedialComplex& mc, const Shape& shape, const std::map<std::string, ParamValue>& changes = {}) {
   VmasDualStage dual;
-  ParamSet params = default_params(VmasDualStage::describe().params);
+  ParamSet params;
   for (const auto& [k, v] : changes) params.set(k, v);
   dual.configure(params);
   BasicContext ctx(1);
@@ -606,22 +600,23 @@ TEST_CASE("vmas stage applies scripted edits in the input frame") {
   // The shape has been moved by a conditioning stage: edits are given in the input's frame.
   shape.to_input = {2.0, Vec3(1, 0, 0)};
   for (Vec3& p : shape.mesh.vertices) p = (p - Vec3(1, 0, 0)) / 2.0;
-  VmasStage stage;
-  const auto specs = VmasStage::describe().params;
   const auto ends = "remove 1 0 2.4 after end; split 1 0 -2.4 after end\nsplit 1 0 0 after end";
-  MedialComplex mc = run_stage(stage, specs, shape, {{"target_spheres", 8LL}, {"edits", std::string(ends)}});
+  MedialComplex mc = run_stage(shape, {{"target_spheres", 8LL}, {"edits", std::string(ends)}});
   CHECK(mc.num_vertices() == 9);  // 8 − 1 + 2, then relaxation without splits
   CHECK(mc.generators.size() == 9);
   CHECK(mc.generator_kind == "mesh_vertex");
-  CHECK(mc.vertex_props.fields.has("vmas_error"));
+  CHECK(mc.has(kVmasError));
+  CHECK(mc.has(kVmasArea));
+  CHECK(mc.get(kVmasId).size() == 9);
   // An edit during the run: the schedule refills up to the target.
-  mc = run_stage(stage, specs, shape, {{"target_spheres", 8LL}, {"edits", std::string("remove 1 0 0 after 25")}});
+  mc = run_stage(shape, {{"target_spheres", 8LL}, {"edits", std::string("remove 1 0 0 after 25")}});
   CHECK(mc.num_vertices() == 8);
   // A bad script is refused when the pipeline is validated, before any work.
-  ParamSet bad = default_params(specs);
+  VmasStage stage;
+  ParamSet bad;
   bad.set("edits", std::string("split 1 2"));
   stage.configure(bad);
-  CHECK_THROWS_WITH(stage.check_params(), Catch::Contains("three coordinates"));
+  CHECK_THROWS_WITH(stage.check_params(), Catch::Contains("edit 'split 1 2': needs three coordinates"));
 }
 
 TEST_CASE("vmas stages on an oriented point cloud") {
@@ -629,8 +624,7 @@ TEST_CASE("vmas stages on an oriented point cloud") {
   const SurfaceMesh mesh = testing::make_capsule(0.2, half, 32);
   Shape shape;
   shape.samples = services::vertex_samples(mesh);
-  VmasStage stage;
-  MedialComplex mc = run_stage(stage, VmasStage::describe().params, shape, {{"target_spheres", 8LL}});
+  MedialComplex mc = run_stage(shape, {{"target_spheres", 8LL}});
   REQUIRE(mc.num_vertices() == 8);
   CHECK(mc.generator_kind == "sample");
   for (const Vec3& c : mc.centres) CHECK(testing::capsule_axis_distance(c, half) < 0.03 * diagonal(mesh));
@@ -639,14 +633,13 @@ TEST_CASE("vmas stages on an oriented point cloud") {
   CHECK(mc.edges.size() == 7);
   // No samples and no mesh: refused before any work.
   Scene empty;
-  CHECK_THROWS_WITH(stage.prepare(empty), Catch::Contains("sample"));
+  CHECK_THROWS_WITH(VmasStage().prepare(empty), Catch::Contains("sample"));
 }
 
 TEST_CASE("vmas_dual recomputes the clusters of spheres that carry none") {
   Shape shape;
   shape.mesh = make_blob();
-  VmasStage stage;
-  MedialComplex mc = run_stage(stage, VmasStage::describe().params, shape, {{"target_spheres", 15LL}});
+  MedialComplex mc = run_stage(shape, {{"target_spheres", 15LL}});
   MedialComplex with = mc;
   run_dual(with, shape);
   MedialComplex without = mc;

@@ -111,14 +111,27 @@ int main(int argc, char** argv) {
     if (!only.empty() && std::find(only.begin(), only.end(), m.name) == only.end()) continue;
     Shape shape;
     shape.mesh = unit_box(read_mesh(meshes / m.file));
-    ParamSet params = default_params(vmas::VmasStage::describe().params);
+    vmas::VmasStage stage;  // at its defaults
+    ParamSet params;
     params.set("target_spheres", static_cast<long long>(m.spheres));
     for (const auto& [k, v] : sets) {
-      const ParamValue& cur = params.at(k);
-      if (std::holds_alternative<double>(cur)) params.set(k, std::stod(v));
-      else if (std::holds_alternative<long long>(cur)) params.set(k, std::stoll(v));
-      else params.set(k, v);
+      const std::vector<ParamSpec> specs = stage.param_specs();
+      const auto spec = std::find_if(specs.begin(), specs.end(), [&k = k](const ParamSpec& p) { return p.name == k; });
+      if (spec == specs.end()) {
+        std::fprintf(stderr, "vmas has no parameter '%s'\n", k.c_str());
+        return 2;
+      }
+      if (spec->type == ParamType::Real) params.set(k, std::stod(v));
+      else if (spec->type == ParamType::Int) params.set(k, std::stoll(v));
+      else if (spec->type == ParamType::Bool) params.set(k, v == "true");
+      else if (spec->type == ParamType::Choice &&
+               std::find(spec->choices.begin(), spec->choices.end(), v) == spec->choices.end()) {
+        std::fprintf(stderr, "'%s' is not one of the choices of '%s' (%s)\n", v.c_str(), k.c_str(),
+                     spec->range_text().c_str());
+        return 2;
+      } else params.set(k, v);
     }
+    stage.configure(params);
     double best = 1e300, best_cpu = 1e300;
     MedialComplex mc;
     int iterations = 0;
@@ -127,9 +140,9 @@ int main(int argc, char** argv) {
     for (int r = 0; r < repeat; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
       const double c0 = cpu_seconds();
-      const auto input = vmas::VmasStage::make_input(shape, "mesh", vmas::VmasStage::input_options(params));
+      const auto input = vmas::VmasStage::make_input(shape, vmas::Surface::Mesh, stage.input_options());
       const auto t1 = std::chrono::steady_clock::now();
-      vmas::VmasSolver solver(input, vmas::VmasStage::solver_options(params));
+      vmas::VmasSolver solver(input, stage.solver_options());
       solver.run();
       solver.finish();
       mc = solver.complex(true, vmas::TriangleRule::Cliques);

@@ -51,12 +51,13 @@ void RepairStage::declare(ParamBinder& p) {
         "that fails");
   p.add("fill_holes", options_.fill_holes, "close boundary loops (CGAL triangulate_refine_and_fair_hole)");
   p.add("fair_holes", options_.fair_holes, "fair the hole patches (smooth); false: flat refined patches");
-  p.add("max_hole_edges", options_.max_hole_edges, "leave larger holes open (and refuse); 0: no limit").at_least(0);
+  p.add("max_hole_edges", options_.max_hole_edges, "leave holes with more boundary edges open (and refuse); 0: no limit").at_least(0);
   p.add("remove_self_intersections", options_.remove_self_intersections,
         "remove self-intersections (CGAL autorefinement, then local repair); refuses when that fails or changes "
         "the shape");
   p.add("check_self_intersections", options_.check_self_intersections,
-        "test for self-intersections (the slow check, about 0.2 s per 100k faces); false: blind to them (warns)");
+        "test for self-intersections (the slow check, about 0.2 s per 100k faces); false: blind to them (warns), "
+        "and remove_self_intersections is refused");
 }
 
 services::RepairOptions RepairStage::repair_options() const {
@@ -112,7 +113,8 @@ void SampleStage::declare(ParamBinder& p) {
   p.add("method", settings_.method, kSampleMethods,
         "poisson: blue noise by sample elimination (or dart throwing with min_distance); uniform: area-weighted "
         "random; vertices: the mesh vertices");
-  p.add("count", settings_.count, "number of samples (uniform; poisson unless min_distance > 0)").at_least(1);
+  p.add("count", settings_.count, "number of samples (uniform; poisson unless min_distance > 0; ignored by vertices)")
+      .at_least(1);
   p.add("min_distance", settings_.min_distance,
         "poisson: sample by this minimum distance instead of by count; 0: by count")
       .at_least(0)

@@ -134,8 +134,9 @@ void VmasStage::declare(ParamBinder& p) {
   p.add("gn_max_iters", o.gn_max_iterations, "Gauss-Newton iterations per update").at_least(1);
   p.add("gn_tol", o.gn_tolerance, "Gauss-Newton stops when the step is shorter").at_least(0).in_unit("scale");
   p.add("knn_k", in.knn, "k of the kNN graph and diffused quadrics (point-cloud input)").at_least(1);
-  p.add("sb_initial_radius", in.sb_initial_radius, "Initial shrinking-ball radius r0").at_least(0).in_unit(
-      "bbox diagonal");
+  p.add("sb_initial_radius", in.sb_initial_radius, "Initial shrinking-ball radius r0")
+      .at_least(0)
+      .in_unit("bbox diagonal");
   p.add("sb_max_iters", in.sb_max_iterations, "Shrinking-ball iterations").at_least(1);
   p.add("sb_angle_deg", in.sb_angle_deg, "Shrinking-ball denoising angle").range(0, 90).in_unit("degree");
   p.add("max_iterations", o.max_iterations, "Iteration cap (warns when reached)").at_least(1);
@@ -152,7 +153,7 @@ void VmasStage::declare(ParamBinder& p) {
   p.add("relax_iterations", relax_iterations_, "Iterations without splits after edits applied at the end")
       .at_least(0);
   p.add("trace", trace_,
-        "Write <id>_trace.csv to the run folder: per iteration the sphere count, splits, culls, total and largest "
+        "Write `<id>_trace.csv` to the run folder: per iteration the sphere count, splits, culls, total and largest "
         "cluster error and the energy");
 }
 

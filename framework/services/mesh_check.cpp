@@ -5,19 +5,22 @@
 #include <medax/services/mesh_check.hpp>
 
 #include "cgal_mesh.hpp"
-#include "message_text.hpp"
+#include "plural.hpp"
 
+#include <medax/union_find.hpp>
+
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
 #include <Eigen/Geometry>
-#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <numeric>
-#include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace medax::services {
 
@@ -31,27 +34,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Union-find with path halving and union by size.
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a), b = find(b);
-    if (a == b) return;
-    if (size_[a] < size_[b]) std::swap(a, b);
-    parent_[b] = a;
-    size_[a] += size_[b];
-  }
-
- private:
-  std::vector<std::size_t> parent_, size_;
-};
-
-using detail::cat;
 using detail::plural;
 
 /// Do two non-degenerate triangles of a soup intersect outside what they share? Shared corners
@@ -129,111 +111,132 @@ SelfIntersections self_intersections(const SurfaceMesh& mesh, const std::vector<
   return out;
 }
 
-}  // namespace
+// ---- the parts of check_mesh -------------------------------------------------------------
 
-MeshReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options) {
-  const auto t0 = Clock::now();
-  MeshReport r;
-  const std::size_t nv = mesh.vertices.size(), nf = mesh.faces.size();
-  r.vertices = nv;
-  r.faces = nf;
-  for (std::size_t f = 0; f < nf; ++f)
+void check_indices(const SurfaceMesh& mesh) {
+  const std::size_t nv = mesh.vertices.size();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (Index v : mesh.faces[f])
       if (v >= nv)
-        throw std::invalid_argument(cat("face ", f, " refers to vertex ", v, " but the mesh has ", nv, " vertices"));
+        throw std::invalid_argument(
+            fmt::format("face {} refers to vertex {} but the mesh has {} vertices", f, v, nv));
+}
 
-  // Duplicate vertices: equal coordinates, exactly.
-  {
-    std::vector<Index> order(nv);
-    std::iota(order.begin(), order.end(), Index{0});
-    const auto less = [&](Index a, Index b) {
-      const Vec3 &p = mesh.vertices[a], &q = mesh.vertices[b];
-      return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
-    };
-    std::sort(order.begin(), order.end(), less);
-    for (std::size_t i = 1; i < nv; ++i)
-      if (mesh.vertices[order[i]] == mesh.vertices[order[i - 1]]) ++r.duplicate_vertices;
-  }
+/// Duplicate vertices: equal coordinates, exactly.
+std::size_t count_duplicate_vertices(const SurfaceMesh& mesh) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<Index> order(nv);
+  std::iota(order.begin(), order.end(), Index{0});
+  const auto less = [&](Index a, Index b) {
+    const Vec3 &p = mesh.vertices[a], &q = mesh.vertices[b];
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::size_t duplicates = 0;
+  for (std::size_t i = 1; i < nv; ++i)
+    if (mesh.vertices[order[i]] == mesh.vertices[order[i - 1]]) ++duplicates;
+  return duplicates;
+}
 
-  // Degenerate faces: a repeated corner (no valid edges: left out of the topology below) or
-  // collinear corners (exact predicate; kept in the topology, skipped by the intersection test).
-  std::vector<char> repeated(nf, 0), usable(nf, 0);
-  std::size_t proper_faces = 0;
+/// Degenerate faces: a repeated corner (no valid edges: left out of the topology) or collinear
+/// corners (exact predicate; kept in the topology, skipped by the intersection test).
+struct FaceKinds {
+  std::vector<char> repeated;  ///< a repeated corner
+  std::vector<char> usable;    ///< neither repeated nor collinear corners
+  std::size_t proper = 0;      ///< faces without a repeated corner
+  std::size_t degenerate = 0;  ///< repeated or collinear corners
+};
+
+FaceKinds classify_faces(const SurfaceMesh& mesh) {
+  const std::size_t nf = mesh.faces.size();
+  FaceKinds kinds{std::vector<char>(nf, 0), std::vector<char>(nf, 0)};
   for (std::size_t f = 0; f < nf; ++f) {
     const auto& [a, b, c] = mesh.faces[f];
     if (a == b || b == c || a == c) {
-      repeated[f] = 1;
-      ++r.degenerate_faces;
+      kinds.repeated[f] = 1;
+      ++kinds.degenerate;
       continue;
     }
-    ++proper_faces;
+    ++kinds.proper;
     if (CGAL::collinear(detail::to_point(mesh.vertices[a]), detail::to_point(mesh.vertices[b]),
                         detail::to_point(mesh.vertices[c])))
-      ++r.degenerate_faces;
+      ++kinds.degenerate;
     else
-      usable[f] = 1;
+      kinds.usable[f] = 1;
   }
+  return kinds;
+}
 
-  // Duplicate faces: the same vertex set as an earlier face (either orientation).
-  {
-    std::vector<Tri> sorted;
-    sorted.reserve(proper_faces);
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (repeated[f]) continue;
-      Tri t = mesh.faces[f];
-      std::sort(t.begin(), t.end());
-      sorted.push_back(t);
-    }
-    std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 1; i < sorted.size(); ++i)
-      if (sorted[i] == sorted[i - 1]) ++r.duplicate_faces;
+/// Duplicate faces: the same vertex set as an earlier face (either orientation).
+std::size_t count_duplicate_faces(const SurfaceMesh& mesh, const FaceKinds& kinds) {
+  std::vector<Tri> sorted;
+  sorted.reserve(kinds.proper);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (kinds.repeated[f]) continue;
+    Tri t = mesh.faces[f];
+    std::sort(t.begin(), t.end());
+    sorted.push_back(t);
   }
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t duplicates = 0;
+  for (std::size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i] == sorted[i - 1]) ++duplicates;
+  return duplicates;
+}
 
-  // Referenced vertices and connected components (faces sharing a vertex).
-  std::vector<char> referenced(nv, 0);
-  UnionFind face_sets(nf);
-  {
-    std::vector<std::int64_t> first_face(nv, -1);
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (repeated[f]) continue;
-      for (Index v : mesh.faces[f]) {
-        referenced[v] = 1;
-        if (first_face[v] < 0) first_face[v] = static_cast<std::int64_t>(f);
-        else face_sets.unite(f, static_cast<std::size_t>(first_face[v]));
-      }
-    }
-  }
-  std::size_t referenced_count = static_cast<std::size_t>(std::count(referenced.begin(), referenced.end(), 1));
-  {
-    // Vertices used only by faces with a repeated corner still count as used.
-    std::vector<char> used = referenced;
-    for (std::size_t f = 0; f < nf; ++f)
-      if (repeated[f])
-        for (Index v : mesh.faces[f]) used[v] = 1;
-    r.unreferenced_vertices = nv - static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
-  }
-  std::vector<std::size_t> component_of(nf, 0);
-  std::vector<std::size_t> roots;
-  for (std::size_t f = 0; f < nf; ++f)
-    if (!repeated[f]) roots.push_back(face_sets.find(f));
-  std::sort(roots.begin(), roots.end());
-  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
-  r.components = roots.size();
-  for (std::size_t f = 0; f < nf; ++f)
-    if (!repeated[f])
-      component_of[f] = static_cast<std::size_t>(std::lower_bound(roots.begin(), roots.end(), face_sets.find(f)) -
-                                                  roots.begin());
+/// Referenced vertices and connected components of the faces without a repeated corner (faces
+/// sharing a vertex), numbered in the order of their lowest face.
+struct FaceComponents {
+  std::vector<char> referenced;  ///< per vertex: used by a face without a repeated corner
+  std::vector<Index> of_face;    ///< per face (0 for faces with a repeated corner)
+  std::size_t count = 0;
+};
 
-  // Edges: one entry per face side, sorted by undirected edge.
-  struct Side {
-    Index lo, hi;
-    Index face;
-    bool forward;  ///< the face runs lo -> hi
-  };
-  std::vector<Side> sides;
-  sides.reserve(3 * proper_faces);
+FaceComponents face_components(const SurfaceMesh& mesh, const FaceKinds& kinds) {
+  const std::size_t nv = mesh.vertices.size(), nf = mesh.faces.size();
+  FaceComponents c{std::vector<char>(nv, 0), std::vector<Index>(nf, 0)};
+  UnionFind sets(nf);
+  std::vector<std::int64_t> first_face(nv, -1);
   for (std::size_t f = 0; f < nf; ++f) {
-    if (repeated[f]) continue;
+    if (kinds.repeated[f]) continue;
+    for (Index v : mesh.faces[f]) {
+      c.referenced[v] = 1;
+      if (first_face[v] < 0) first_face[v] = static_cast<std::int64_t>(f);
+      else sets.unite(static_cast<Index>(f), static_cast<Index>(first_face[v]));
+    }
+  }
+  // The representative is the lowest face of its set, so numbering the representatives in
+  // increasing order numbers the components by their lowest face.
+  std::vector<Index> number(nf, 0);
+  for (std::size_t f = 0; f < nf; ++f)
+    if (!kinds.repeated[f] && sets.find(static_cast<Index>(f)) == f) number[f] = static_cast<Index>(c.count++);
+  for (std::size_t f = 0; f < nf; ++f)
+    if (!kinds.repeated[f]) c.of_face[f] = number[sets.find(static_cast<Index>(f))];
+  return c;
+}
+
+/// Vertices used by no face at all (those used only by faces with a repeated corner count as used).
+std::size_t count_unreferenced(const SurfaceMesh& mesh, const FaceKinds& kinds, const std::vector<char>& referenced) {
+  std::vector<char> used = referenced;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (kinds.repeated[f])
+      for (Index v : mesh.faces[f]) used[v] = 1;
+  return mesh.vertices.size() - static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
+}
+
+/// One face side, by its undirected edge.
+struct Side {
+  Index lo, hi;
+  Index face;
+  bool forward;  ///< the face runs lo -> hi
+};
+
+/// Every side of the faces without a repeated corner, sorted by undirected edge, then face.
+std::vector<Side> sorted_sides(const SurfaceMesh& mesh, const FaceKinds& kinds) {
+  std::vector<Side> sides;
+  sides.reserve(3 * kinds.proper);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (kinds.repeated[f]) continue;
     const Tri& t = mesh.faces[f];
     for (int k = 0; k < 3; ++k) {
       const Index a = t[k], b = t[(k + 1) % 3];
@@ -243,22 +246,44 @@ MeshReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options) 
   std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
     return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
   });
-  // Corner (3f + k) union-find: corners at the same vertex join when their faces share an edge
-  // at that vertex; a vertex whose corners form several classes has several fans.
-  UnionFind corners(3 * nf);
+  return sides;
+}
+
+/// Vertices whose corners form several classes (several fans). `corners` joins corner 3f + k
+/// with the corners at the same vertex of the faces sharing an edge there.
+std::size_t count_nonmanifold_vertices(const SurfaceMesh& mesh, const FaceKinds& kinds, UnionFind& corners) {
+  std::vector<std::pair<Index, Index>> fans;  // (vertex, class)
+  fans.reserve(3 * kinds.proper);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (!kinds.repeated[f])
+      for (int k = 0; k < 3; ++k) fans.emplace_back(mesh.faces[f][k], corners.find(static_cast<Index>(3 * f + k)));
+  std::sort(fans.begin(), fans.end());
+  fans.erase(std::unique(fans.begin(), fans.end()), fans.end());
+  std::size_t count = 0;
+  for (std::size_t i = 1; i < fans.size(); ++i)
+    if (fans[i].first == fans[i - 1].first && (i < 2 || fans[i - 2].first != fans[i].first)) ++count;
+  return count;
+}
+
+/// Edges: boundary (one face), consistent or not (two), non-manifold (more); boundary loops
+/// and non-manifold vertices. Returns the number of edges of each component.
+std::vector<long long> check_edges(const SurfaceMesh& mesh, const FaceKinds& kinds, const FaceComponents& components,
+                                   MeshReport& r) {
+  const std::vector<Side> sides = sorted_sides(mesh, kinds);
+  UnionFind corners(3 * mesh.faces.size());
   const auto corner = [&mesh](Index f, Index v) {
     const Tri& t = mesh.faces[f];
-    return 3 * static_cast<std::size_t>(f) + (t[0] == v ? 0 : t[1] == v ? 1 : 2);
+    return static_cast<Index>(3 * static_cast<std::size_t>(f) + (t[0] == v ? 0 : t[1] == v ? 1 : 2));
   };
-  UnionFind boundary_sets(nv);
-  std::vector<char> on_boundary(nv, 0);
-  std::vector<long long> component_edges(r.components, 0);
+  UnionFind boundary_sets(mesh.vertices.size());
+  std::vector<char> on_boundary(mesh.vertices.size(), 0);
+  std::vector<long long> component_edges(components.count, 0);
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i;
     while (j < sides.size() && sides[j].lo == sides[i].lo && sides[j].hi == sides[i].hi) ++j;
     const std::size_t count = j - i;
     ++r.edges;
-    ++component_edges[component_of[sides[i].face]];
+    ++component_edges[components.of_face[sides[i].face]];
     if (count == 1) {
       ++r.boundary_edges;
       boundary_sets.unite(sides[i].lo, sides[i].hi);
@@ -274,70 +299,82 @@ MeshReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options) 
     }
     i = j;
   }
-  {
-    std::vector<std::pair<Index, std::size_t>> fans;
-    fans.reserve(3 * proper_faces);
-    for (std::size_t f = 0; f < nf; ++f)
-      if (!repeated[f])
-        for (int k = 0; k < 3; ++k) fans.emplace_back(mesh.faces[f][k], corners.find(3 * f + k));
-    std::sort(fans.begin(), fans.end());
-    fans.erase(std::unique(fans.begin(), fans.end()), fans.end());
-    for (std::size_t i = 1; i < fans.size(); ++i)
-      if (fans[i].first == fans[i - 1].first && (i < 2 || fans[i - 2].first != fans[i].first))
-        ++r.nonmanifold_vertices;
-  }
-  {
-    std::vector<std::size_t> loops;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (on_boundary[v]) loops.push_back(boundary_sets.find(v));
-    std::sort(loops.begin(), loops.end());
-    r.boundary_loops = static_cast<std::size_t>(std::unique(loops.begin(), loops.end()) - loops.begin());
-  }
+  r.nonmanifold_vertices = count_nonmanifold_vertices(mesh, kinds, corners);
+  std::vector<Index> loops;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (on_boundary[v]) loops.push_back(boundary_sets.find(static_cast<Index>(v)));
+  std::sort(loops.begin(), loops.end());
+  r.boundary_loops = static_cast<std::size_t>(std::unique(loops.begin(), loops.end()) - loops.begin());
+  return component_edges;
+}
 
-  r.closed = proper_faces > 0 && r.boundary_edges == 0;
+/// Signed volume about the bounding-box centre of the referenced vertices (smaller round-off
+/// than about the origin).
+double signed_volume(const SurfaceMesh& mesh, const FaceKinds& kinds, const std::vector<char>& referenced) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (referenced[v]) lo = lo.cwiseMin(mesh.vertices[v]), hi = hi.cwiseMax(mesh.vertices[v]);
+  const Vec3 centre = 0.5 * (lo + hi);
+  double six_volume = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (kinds.repeated[f]) continue;
+    const auto& [a, b, c] = mesh.faces[f];
+    six_volume += (mesh.vertices[a] - centre).dot((mesh.vertices[b] - centre).cross(mesh.vertices[c] - centre));
+  }
+  return six_volume / 6.0;
+}
+
+/// Genus per component of a closed manifold mesh, from its Euler characteristic.
+void set_genus(const SurfaceMesh& mesh, const FaceKinds& kinds, const FaceComponents& components,
+           const std::vector<long long>& component_edges, MeshReport& r) {
+  std::vector<long long> chi(components.count, 0);
+  std::vector<char> seen(mesh.vertices.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (kinds.repeated[f]) continue;
+    chi[components.of_face[f]] += 1;
+    for (Index v : mesh.faces[f])
+      if (!seen[v]) seen[v] = 1, chi[components.of_face[f]] += 1;
+  }
+  long long total = 0;
+  for (std::size_t c = 0; c < components.count; ++c) {
+    const long long g = (2 - (chi[c] - component_edges[c])) / 2;
+    r.genus_per_component.push_back(g);
+    total += g;
+  }
+  r.genus = total;
+}
+
+}  // namespace
+
+MeshReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options) {
+  const auto t0 = Clock::now();
+  check_indices(mesh);
+  MeshReport r;
+  r.vertices = mesh.vertices.size();
+  r.faces = mesh.faces.size();
+  r.duplicate_vertices = count_duplicate_vertices(mesh);
+  const FaceKinds kinds = classify_faces(mesh);
+  r.degenerate_faces = kinds.degenerate;
+  r.duplicate_faces = count_duplicate_faces(mesh, kinds);
+  const FaceComponents components = face_components(mesh, kinds);
+  r.components = components.count;
+  r.unreferenced_vertices = count_unreferenced(mesh, kinds, components.referenced);
+  const std::vector<long long> component_edges = check_edges(mesh, kinds, components, r);
+
+  r.closed = kinds.proper > 0 && r.boundary_edges == 0;
   r.manifold = r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0;
   r.consistently_oriented = r.inconsistent_edges == 0;
-
-  // Signed volume about the bounding-box centre (smaller round-off than about the origin).
-  if (proper_faces > 0) {
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (referenced[v]) lo = lo.cwiseMin(mesh.vertices[v]), hi = hi.cwiseMax(mesh.vertices[v]);
-    const Vec3 centre = 0.5 * (lo + hi);
-    double six_volume = 0;
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (repeated[f]) continue;
-      const auto& [a, b, c] = mesh.faces[f];
-      six_volume += (mesh.vertices[a] - centre).dot((mesh.vertices[b] - centre).cross(mesh.vertices[c] - centre));
-    }
-    r.signed_volume = six_volume / 6.0;
-  }
+  if (kinds.proper > 0) r.signed_volume = signed_volume(mesh, kinds, components.referenced);
   r.outward = r.closed && r.manifold && r.consistently_oriented && r.signed_volume > 0;
 
-  // Euler characteristic and genus.
-  const long long faces_count = static_cast<long long>(proper_faces);
-  r.euler_characteristic = static_cast<long long>(referenced_count) - static_cast<long long>(r.edges) + faces_count;
-  if (r.closed && r.manifold) {
-    std::vector<long long> chi(r.components, 0);
-    std::vector<char> seen(nv, 0);
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (repeated[f]) continue;
-      chi[component_of[f]] += 1;
-      for (Index v : mesh.faces[f])
-        if (!seen[v]) seen[v] = 1, chi[component_of[f]] += 1;
-    }
-    long long total = 0;
-    for (std::size_t c = 0; c < r.components; ++c) {
-      const long long g = (2 - (chi[c] - component_edges[c])) / 2;
-      r.genus_per_component.push_back(g);
-      total += g;
-    }
-    r.genus = total;
-  }
+  const auto referenced = static_cast<long long>(
+      std::count(components.referenced.begin(), components.referenced.end(), 1));
+  r.euler_characteristic = referenced - static_cast<long long>(r.edges) + static_cast<long long>(kinds.proper);
+  if (r.closed && r.manifold) set_genus(mesh, kinds, components, component_edges, r);
 
   if (options.self_intersections) {
     const auto t1 = Clock::now();
-    const SelfIntersections si = self_intersections(mesh, usable);
+    const SelfIntersections si = self_intersections(mesh, kinds.usable);
     r.self_intersecting = si.pairs > 0;
     r.intersecting_pairs = si.pairs;
     r.intersecting_faces = si.faces;
@@ -358,49 +395,50 @@ std::vector<MeshProblem> MeshReport::problems() const {
   }
   if (boundary_edges > 0)
     add(MeshProblemKind::Holes, false,
-        cat(plural(boundary_loops, "boundary loop", "boundary loops"), " (holes; ",
-            plural(boundary_edges, "boundary edge", "boundary edges"),
-            "): run `repair` with fill_holes: true, or close the holes in the mesh"));
+        fmt::format("{} (holes; {}): run `repair` with fill_holes: true, or close the holes in the mesh",
+                    plural(boundary_loops, "boundary loop", "boundary loops"),
+                    plural(boundary_edges, "boundary edge", "boundary edges")));
   if (nonmanifold_edges > 0)
     add(MeshProblemKind::NonManifoldEdges, false,
-        cat(plural(nonmanifold_edges, "non-manifold edge", "non-manifold edges"),
-            " (3 or more faces on one edge, so the surface is not watertight): fix the mesh, or run `repair` with repair: true (splits them, "
-            "then fills holes and removes self-intersections; refuses if the result is still invalid)"));
+        plural(nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
+            " (3 or more faces on one edge, so the surface is not watertight): fix the mesh, or run `repair` with "
+            "repair: true (splits them, then fills holes and removes self-intersections; refuses if the result is "
+            "still invalid)");
   if (nonmanifold_vertices > 0)
     add(MeshProblemKind::NonManifoldVertices, false,
-        cat(plural(nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices"),
+        plural(nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
             " (the faces around it form several fans): fix the mesh, or run `repair` with repair: true "
             "(splits them, then removes the resulting self-intersections; refuses if the result is still "
-            "invalid)"));
+            "invalid)");
   if (self_intersecting.value_or(false))
     add(MeshProblemKind::SelfIntersections, false,
-        cat(plural(intersecting_pairs, "self-intersecting triangle pair", "self-intersecting triangle pairs"), " (",
-            plural(intersecting_faces, "face", "faces"),
-            "): run `repair` with remove_self_intersections: true, or fix the mesh"));
+        fmt::format("{} ({}): run `repair` with remove_self_intersections: true, or fix the mesh",
+                    plural(intersecting_pairs, "self-intersecting triangle pair", "self-intersecting triangle pairs"),
+                    plural(intersecting_faces, "face", "faces")));
   if (inconsistent_edges > 0)
     add(MeshProblemKind::InconsistentOrientation, true,
-        cat(plural(inconsistent_edges, "edge", "edges"),
-            " where the two faces disagree in orientation: `repair` orients the faces consistently (automatic)"));
+        plural(inconsistent_edges, "edge", "edges") +
+            " where the two faces disagree in orientation: `repair` orients the faces consistently (automatic)");
   if (closed && manifold && consistently_oriented && !(signed_volume > 0))
     add(MeshProblemKind::InwardOrientation, true,
-        cat("faces oriented inward (signed volume ", signed_volume,
-            " <= 0): `repair` flips them outward (automatic)"));
+        fmt::format("faces oriented inward (signed volume {:g} <= 0): `repair` flips them outward (automatic)",
+                    signed_volume));
   if (duplicate_vertices > 0)
     add(MeshProblemKind::DuplicateVertices, true,
-        cat(plural(duplicate_vertices, "duplicate vertex", "duplicate vertices"),
-            " (same position as another vertex): `repair` merges them (automatic)"));
+        plural(duplicate_vertices, "duplicate vertex", "duplicate vertices") +
+            " (same position as another vertex): `repair` merges them (automatic)");
   if (degenerate_faces > 0)
     add(MeshProblemKind::DegenerateFaces, true,
-        cat(plural(degenerate_faces, "degenerate face", "degenerate faces"),
-            " (repeated or collinear corners, zero area): `repair` removes them (automatic)"));
+        plural(degenerate_faces, "degenerate face", "degenerate faces") +
+            " (repeated or collinear corners, zero area): `repair` removes them (automatic)");
   if (duplicate_faces > 0)
     add(MeshProblemKind::DuplicateFaces, true,
-        cat(plural(duplicate_faces, "duplicate face", "duplicate faces"),
-            " (same vertices as another face): `repair` removes them (automatic)"));
+        plural(duplicate_faces, "duplicate face", "duplicate faces") +
+            " (same vertices as another face): `repair` removes them (automatic)");
   if (unreferenced_vertices > 0)
     add(MeshProblemKind::UnreferencedVertices, true,
-        cat(plural(unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"),
-            " (used by no face): `repair` drops them (automatic)"));
+        plural(unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") +
+            " (used by no face): `repair` drops them (automatic)");
   return out;
 }
 
@@ -419,11 +457,11 @@ std::string MeshReport::describe_problems() const {
 }
 
 std::string MeshReport::summary() const {
-  std::string s = cat(vertices, " vertices, ", faces, " faces, ",
-                      closed ? std::string("closed") : plural(boundary_loops, "hole", "holes"), ", ",
-                      manifold ? "manifold" : "non-manifold", ", ", plural(components, "component", "components"));
-  if (genus) s += cat(", genus ", *genus);
-  s += cat(", Euler characteristic ", euler_characteristic);
+  std::string s = fmt::format("{} vertices, {} faces, {}, {}, {}", vertices, faces,
+                              closed ? std::string("closed") : plural(boundary_loops, "hole", "holes"),
+                              manifold ? "manifold" : "non-manifold", plural(components, "component", "components"));
+  if (genus) s += fmt::format(", genus {}", *genus);
+  s += fmt::format(", Euler characteristic {}", euler_characteristic);
   if (closed && manifold && consistently_oriented) s += outward ? ", outward" : ", inward";
   else if (!consistently_oriented) s += ", inconsistently oriented";
   if (!self_intersecting) s += ", self-intersections not tested";

@@ -3,7 +3,7 @@
 #include <medax/services/mesh_check.hpp>
 
 #include "cgal_mesh.hpp"
-#include "message_text.hpp"
+#include "plural.hpp"
 
 #ifndef CGAL_EIGEN3_ENABLED
 #define CGAL_EIGEN3_ENABLED  // fairing needs CGAL's Eigen sparse solver; Eigen is a kernel dependency
@@ -25,7 +25,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
-#include <sstream>
+#include <string>
 
 namespace medax::services {
 
@@ -39,7 +39,6 @@ using face_descriptor = CgalMesh::Face_index;
 using vertex_descriptor = CgalMesh::Vertex_index;
 using halfedge_descriptor = CgalMesh::Halfedge_index;
 
-using detail::cat;
 using detail::plural;
 
 SurfaceMesh to_surface(const CgalMesh& in) {
@@ -111,7 +110,7 @@ void orient_outward(CgalMesh& mesh, RepairResult& result) {
   mesh.remove_property_map(component);
   if (!flip.empty()) {
     PMP::reverse_face_orientations(flip, mesh);
-    result.actions.push_back(cat("flipped ", plural(flip.size(), "inward face", "inward faces"), " (components with negative volume)"));
+    result.actions.push_back(fmt::format("flipped {} (components with negative volume)", plural(flip.size(), "inward face", "inward faces")));
   }
 }
 
@@ -124,8 +123,8 @@ void fill_holes(CgalMesh& mesh, const RepairOptions& options, RepairResult& resu
     std::size_t edges = 0;
     for ([[maybe_unused]] halfedge_descriptor g : CGAL::halfedges_around_face(h, mesh)) ++edges;
     if (options.max_hole_edges > 0 && edges > options.max_hole_edges) {
-      result.failures.push_back(cat("left a hole of ", edges, " edges open (max_hole_edges is ",
-                                    options.max_hole_edges, ")"));
+      result.failures.push_back(fmt::format("left a hole of {} edges open (max_hole_edges is {})", edges,
+                                            options.max_hole_edges));
       continue;
     }
     std::vector<face_descriptor> faces;
@@ -138,17 +137,17 @@ void fill_holes(CgalMesh& mesh, const RepairOptions& options, RepairResult& resu
       PMP::triangulate_and_refine_hole(mesh, h, std::back_inserter(faces), std::back_inserter(vertices));
     }
     if (faces.empty()) {
-      result.failures.push_back(cat("could not triangulate a hole of ", edges, " edges (CGAL triangulate_hole)"));
+      result.failures.push_back(fmt::format("could not triangulate a hole of {} edges (CGAL triangulate_hole)", edges));
       continue;
     }
     ++filled;
     new_faces += faces.size();
-    if (!faired) result.failures.push_back(cat("fairing failed on a hole of ", edges, " edges (left flat)"));
+    if (!faired) result.failures.push_back(fmt::format("fairing failed on a hole of {} edges (left flat)", edges));
   }
   if (filled > 0)
-    result.actions.push_back(cat("filled ", plural(filled, "hole", "holes"), " with ", plural(new_faces, "face", "faces"),
-                                 " (CGAL triangulate_", options.fair_holes ? "refine_and_fair" : "and_refine",
-                                 "_hole)"));
+    result.actions.push_back(fmt::format("filled {} with {} (CGAL triangulate_{}_hole)", plural(filled, "hole", "holes"),
+                                         plural(new_faces, "face", "faces"),
+                                         options.fair_holes ? "refine_and_fair" : "and_refine"));
 }
 
 /// Size measures used to reject a "repair" that throws away part of the shape (CGAL's
@@ -185,12 +184,13 @@ Measures measure(CgalMesh& mesh) {
 std::string shape_change(const Measures& before, const Measures& after) {
   const auto relative = [](double a, double b) { return std::abs(a - b) / std::max(std::abs(a), 1e-300); };
   if (after.components > before.components)
-    return cat("it split the surface into ", after.components, " components (there were ", before.components,
-               ")");
+    return fmt::format("it split the surface into {} components (there were {})", after.components,
+                       before.components);
   if (relative(before.diagonal, after.diagonal) > 0.02 || relative(before.area, after.area) > 0.25 ||
       relative(before.volume, after.volume) > 0.25)
-    return cat("it changed the shape too much (bounding-box diagonal ", before.diagonal, " -> ", after.diagonal,
-               ", area ", before.area, " -> ", after.area, ", volume ", before.volume, " -> ", after.volume, ")");
+    return fmt::format("it changed the shape too much (bounding-box diagonal {:g} -> {:g}, area {:g} -> {:g}, volume {:g} "
+                       "-> {:g})",
+                       before.diagonal, after.diagonal, before.area, after.area, before.volume, after.volume);
   return {};
 }
 
@@ -207,20 +207,20 @@ void remove_self_intersections(CgalMesh& mesh, RepairResult& result) {
       fixed = run(candidate);
       candidate.collect_garbage();
     } catch (const std::exception& e) {
-      result.failures.push_back(cat("CGAL ", name, " failed: ", e.what()));
+      result.failures.push_back(fmt::format("CGAL {} failed: {}", name, e.what()));
       return false;
     }
     if (!fixed || PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(candidate)) {
-      result.failures.push_back(cat("CGAL ", name, " left self-intersections"));
+      result.failures.push_back(fmt::format("CGAL {} left self-intersections", name));
       return false;
     }
     const std::string changed = shape_change(before, measure(candidate));
     if (!changed.empty()) {
-      result.failures.push_back(cat("rejected the result of CGAL ", name, ": ", changed));
+      result.failures.push_back(fmt::format("rejected the result of CGAL {}: {}", name, changed));
       return false;
     }
     mesh = std::move(candidate);
-    result.actions.push_back(cat("removed the self-intersections (CGAL ", name, ")"));
+    result.actions.push_back(fmt::format("removed the self-intersections (CGAL {})", name));
     return true;
   };
   if (CGAL::is_closed(mesh) &&
@@ -258,14 +258,14 @@ RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options)
     polygons.reserve(input.faces.size());
     for (const Tri& f : input.faces) polygons.push_back({f[0], f[1], f[2]});
     const std::size_t merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
-    if (merged > 0) result.actions.push_back(cat("merged ", plural(merged, "duplicate vertex", "duplicate vertices")));
+    if (merged > 0) result.actions.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
     const std::size_t faces_before = polygons.size(), points_merged = points.size();
     PMP::repair_polygon_soup(points, polygons);
     if (polygons.size() < faces_before)
-      result.actions.push_back(cat("removed ", plural(faces_before - polygons.size(), "face", "faces"),
-                                   " with repeated corners or duplicating another face"));
+      result.actions.push_back("removed " + plural(faces_before - polygons.size(), "face", "faces") +
+                                   " with repeated corners or duplicating another face");
     if (points.size() < points_merged)
-      result.actions.push_back(cat("dropped ", plural(points_merged - points.size(), "unreferenced vertex", "unreferenced vertices")));
+      result.actions.push_back("dropped " + plural(points_merged - points.size(), "unreferenced vertex", "unreferenced vertices"));
     if (polygons.empty()) {
       result.failures.push_back("no face is left after removing the degenerate ones");
       result.mesh = {};
@@ -278,8 +278,8 @@ RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options)
     const std::size_t points_before = points.size();
     PMP::orient_polygon_soup(points, polygons);
     if (points.size() > points_before)
-      result.actions.push_back(cat("split ", plural(points.size() - points_before, "vertex", "vertices"),
-                                   " at non-manifold edges or vertices (CGAL orient_polygon_soup)"));
+      result.actions.push_back("split " + plural(points.size() - points_before, "vertex", "vertices") +
+                                   " at non-manifold edges or vertices (CGAL orient_polygon_soup)");
     if (result.before.inconsistent_edges > 0)
       result.actions.push_back("oriented the faces consistently (CGAL orient_polygon_soup)");
 
@@ -298,8 +298,9 @@ RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options)
       if (collinear > 0) {
         const bool all = PMP::remove_degenerate_faces(mesh);
         mesh.collect_garbage();
-        result.actions.push_back(cat("removed ", plural(collinear, "collinear (zero-area) face", "collinear (zero-area) faces"), " by edge collapse",
-                                     all ? "" : " (some could not be removed)"));
+        result.actions.push_back(fmt::format("removed {} by edge collapse{}",
+                                             plural(collinear, "collinear (zero-area) face", "collinear (zero-area) faces"),
+                                             all ? "" : " (some could not be removed)"));
         if (!all) result.failures.push_back("CGAL remove_degenerate_faces could not remove every zero-area face");
       }
 
@@ -315,7 +316,7 @@ RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options)
   } catch (const std::exception& e) {
     // CGAL signals broken preconditions with exceptions (when its checks are on): give back the
     // input unrepaired, with the reason.
-    result.failures.push_back(cat("CGAL failed during repair: ", e.what()));
+    result.failures.push_back(std::string("CGAL failed during repair: ") + e.what());
     result.mesh = input;
   }
 

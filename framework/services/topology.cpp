@@ -1,31 +1,20 @@
 #include <medax/services/topology.hpp>
 
+#include "services_fmt.hpp"
+
+#include <medax/union_find.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
-#include <string>
 
 namespace medax::services {
 
 namespace {
 
 using Edge = std::array<Index, 2>;
-
-struct UnionFind {
-  std::vector<Index> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), Index{0}); }
-  Index find(Index v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  }
-  void unite(Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// Symmetric difference of two sorted index lists (addition over Z/2).
 void add_mod2(std::vector<Index>& column, const std::vector<Index>& other, std::vector<Index>& scratch) {
@@ -129,8 +118,8 @@ ComplexTopology complex_topology(std::size_t num_vertices, const std::vector<Seg
                                  const std::vector<Tri>& faces) {
   const auto check = [num_vertices](Index v, const char* kind, std::size_t i) {
     if (v >= num_vertices)
-      throw std::invalid_argument(std::string("topology: ") + kind + " " + std::to_string(i) + " refers to vertex " +
-                                  std::to_string(v) + " of " + std::to_string(num_vertices));
+      throw std::invalid_argument(
+          fmt::format("complex topology: {} {} refers to vertex {} of {}", kind, i, v, num_vertices));
   };
   std::vector<std::array<Index, 3>> tris;
   std::vector<Edge> all_edges;
@@ -163,10 +152,9 @@ ComplexTopology complex_topology(std::size_t num_vertices, const std::vector<Seg
   t.faces = tris.size();
   t.euler = static_cast<long long>(t.vertices) - static_cast<long long>(t.edges) + static_cast<long long>(t.faces);
 
-  UnionFind uf(num_vertices);
-  for (const Edge& e : all_edges) uf.unite(e[0], e[1]);
-  for (std::size_t v = 0; v < num_vertices; ++v)
-    if (uf.find(static_cast<Index>(v)) == v) ++t.b0;
+  UnionFind components(num_vertices);
+  for (const Edge& e : all_edges) components.unite(e[0], e[1]);
+  t.b0 = components.count();
 
   const auto edge_index = [&](Index a, Index b) {
     return static_cast<Index>(std::lower_bound(all_edges.begin(), all_edges.end(), Edge{a, b}) - all_edges.begin());
@@ -202,8 +190,8 @@ SurfaceTopology surface_topology(const SurfaceMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const Index v = mesh.faces[f][k];
       if (v >= mesh.vertices.size())
-        throw std::invalid_argument("topology: face " + std::to_string(f) + " refers to vertex " + std::to_string(v) +
-                                    " of " + std::to_string(mesh.vertices.size()));
+        throw std::invalid_argument(fmt::format("surface topology: face {} refers to vertex {} of {}", f, v,
+                                                mesh.vertices.size()));
       if (remap[v] == Index(-1)) remap[v] = used++;
       faces[f][k] = remap[v];
     }

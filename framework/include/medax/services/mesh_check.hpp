@@ -65,7 +65,8 @@ struct MeshReport {
   bool outward = false;                 ///< closed, consistent and signed volume > 0
 
   long long euler_characteristic = 0;   ///< V − E + F over referenced vertices
-  /// Only for closed manifold meshes: the sum of (2 − χ_c)/2 over components, and per component.
+  /// Only for closed manifold meshes: the sum of (2 − χ_c)/2 over components, and per component
+  /// (components in the order of their lowest face index).
   std::optional<long long> genus;
   std::vector<long long> genus_per_component;
 

@@ -18,14 +18,20 @@
 
 namespace medax::dey_zhao {
 
+const std::vector<std::pair<std::string, InnerSelection>>& inner_selection_names() {
+  static const std::vector<std::pair<std::string, InnerSelection>> names{
+      {"auto", InnerSelection::Auto},
+      {"delaunay_surface", InnerSelection::DelaunaySurface},
+      {"mesh", InnerSelection::Mesh},
+      {"normals", InnerSelection::Normals},
+      {"none", InnerSelection::None},
+  };
+  return names;
+}
+
 const char* to_string(InnerSelection s) {
-  switch (s) {
-    case InnerSelection::Auto: return "auto";
-    case InnerSelection::DelaunaySurface: return "delaunay_surface";
-    case InnerSelection::Mesh: return "mesh";
-    case InnerSelection::Normals: return "normals";
-    case InnerSelection::None: return "none";
-  }
+  for (const auto& [name, value] : inner_selection_names())
+    if (value == s) return name.c_str();
   return "?";
 }
 

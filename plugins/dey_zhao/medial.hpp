@@ -10,6 +10,7 @@
 #include <medax/surface.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace medax::dey_zhao {
@@ -25,6 +26,8 @@ enum class InnerSelection {
   Normals,          ///< (c) the edge leaves both ends inwards: t_pq·n_p < 0 and t_qp·n_q < 0
   None,             ///< inner and outer medial axis (the paper's ENGINE)
 };
+/// The name of each inner selection: the `inner` parameter's choices, and to_string().
+const std::vector<std::pair<std::string, InnerSelection>>& inner_selection_names();
 const char* to_string(InnerSelection s);
 
 /// What happens to a selected facet dual to a convex-hull edge (an unbounded Voronoi facet).

@@ -99,7 +99,7 @@ TEST_CASE("dey_zhao stage: extracts from samples or vertices and refuses what it
   // An open mesh cannot tell inside from outside.
   Shape open = scene.shape;
   open.mesh.faces.pop_back();
-  CHECK_THROWS_WITH(mesh_inner->extract(open, ctx), Catch::Contains("dey_zhao:") && Catch::Contains("not closed"));
+  CHECK_THROWS_WITH(mesh_inner->extract(open, ctx), Catch::Contains("not closed"));
 }
 
 TEST_CASE("dey_zhao stage in a pipeline writes the medial axis of a torus", "[dey_zhao][stage]") {

@@ -20,7 +20,7 @@ bool label_cells_by_surface(const services::DelaunayTetrahedralization& dt, cons
                             std::vector<char>& inside, std::size_t& missing);
 
 /// (b) A closed mesh: an edge (p, q) is inner when its midpoint is strictly inside (exact ray
-/// parity) and the segment, shrunk by 2^-20 of its length at both ends, does not meet the mesh
+/// parity) and the segment, shrunk by 1/16 of its length at both ends, does not meet the mesh
 /// (CGAL AABB tree, exact predicates).
 class MeshEdgeSide {
  public:

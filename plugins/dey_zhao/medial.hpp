@@ -114,6 +114,17 @@ enum ConditionBit : int { kAngleP = 1, kAngleQ = 2, kRatioP = 4, kRatioQ = 8 };
 /// The condition bits an edge with these scores passes under `options` (0: not selected).
 int conditions(const EdgeScores& s, const MedialOptions& options);
 
+/// The columns medial_axis() writes (see below).
+inline const Property<int> kPolygon{Element::Face, "polygon"};
+inline const Property<int> kDualP{Element::Face, "p"};
+inline const Property<int> kDualQ{Element::Face, "q"};
+inline const Property<int> kConditions{Element::Face, "conditions"};
+inline const Property<int> kUnbounded{Element::Face, "unbounded"};
+inline const Property<double> kAngle{Element::Face, "angle"};
+inline const Property<double> kRatio{Element::Face, "ratio"};
+inline const Property<int> kFanDiagonal{Element::Edge, "fan_diagonal"};
+inline const Property<int> kClipped{Element::Edge, "clipped"};
+
 /// MEDIAL on `input.points`:
 /// - vertices: the circumcentres of the Delaunay cells around the selected edges (radius =
 ///   circumradius; generators = the cell's 4 corners, sorted), plus, with Unbounded::Clip, the

@@ -87,9 +87,9 @@ TEST_CASE("dey_zhao converges on the ellipsoid: distances to the analytic axis d
     l.n = n;
     // Lemma 7: a point w of an Angle-selected facet (at p) with |w − p| <= mu lies within
     // O(eps) mu of m(p), the centre of the medial ball at p.
-    const auto& P = m.face_props.labels.get("p");
-    const auto& Q = m.face_props.labels.get("q");
-    const auto& bits = m.face_props.labels.get("conditions");
+    const auto& P = m.get(dey_zhao::kDualP);
+    const auto& Q = m.get(dey_zhao::kDualQ);
+    const auto& bits = m.get(dey_zhao::kConditions);
     std::vector<double> rel;
     for (std::size_t f = 0; f < m.faces.size(); ++f)
       for (int end = 0; end < 2; ++end) {

@@ -104,8 +104,8 @@ TEST_CASE("dey_zhao umbrellas: umbrella edges fail both conditions at their end 
     dey_zhao::MedialReport report;
     const MedialComplex m = dz_test::run(s, dz_test::with_inner(dey_zhao::InnerSelection::None), &report);
     REQUIRE(!m.faces.empty());
-    const auto& P = m.face_props.labels.get("p");
-    const auto& Q = m.face_props.labels.get("q");
+    const auto& P = m.get(dey_zhao::kDualP);
+    const auto& Q = m.get(dey_zhao::kDualQ);
     std::size_t dual = 0;
     for (std::size_t f = 0; f < m.faces.size(); ++f)
       dual += umbrella_edges.count({static_cast<Index>(P[f]), static_cast<Index>(Q[f])});

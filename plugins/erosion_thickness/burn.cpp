@@ -1,15 +1,16 @@
 #include "burn.hpp"
 
+#include <medax/union_find.hpp>
+
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
 namespace medax::et {
 
 BurnGraph build_burn_graph(const TriangleComplex& cx, double omega, int min_samples) {
-  if (!(omega > 0) || !std::isfinite(omega)) throw std::invalid_argument("erosion thickness: omega must be > 0");
-  if (min_samples < 0) throw std::invalid_argument("erosion thickness: min_samples must be >= 0");
+  if (!(omega > 0) || !std::isfinite(omega)) throw std::invalid_argument("omega must be > 0");
+  if (min_samples < 0) throw std::invalid_argument("min_samples must be >= 0");
   BurnGraph g;
   g.cx = &cx;
   g.vsec = compute_vertex_sectors(cx);
@@ -24,7 +25,7 @@ BurnGraph build_burn_graph(const TriangleComplex& cx, double omega, int min_samp
     const double n = std::max<double>(min_samples, std::floor(l / omega));
     total += static_cast<std::size_t>(n);
     if (total >= 0xfffffff0u)
-      throw std::runtime_error("erosion thickness: omega is too small for this complex (more than 4e9 graph nodes)");
+      throw std::runtime_error("omega is too small for this complex (more than 4e9 graph nodes)");
   }
   g.sample_begin[ne] = static_cast<Index>(total);
 
@@ -177,11 +178,10 @@ class Exposure {
     for (std::size_t a = 0; a < unburned_.size(); ++a) {
       const Index s = unburned_[a];
       if (vs.end_a[s] == vs.end_b[s]) continue;
-      parent_.resize(nh);
-      std::iota(parent_.begin(), parent_.end(), 0);
+      UnionFind h(nh);
       for (std::size_t b = 0; b < unburned_.size(); ++b)
-        if (b != a) unite(vs.end_a[unburned_[b]], vs.end_b[unburned_[b]]);
-      if (find(vs.end_a[s]) != find(vs.end_b[s])) exposed_.push_back(s);
+        if (b != a) h.unite(vs.end_a[unburned_[b]], vs.end_b[unburned_[b]]);
+      if (h.find(vs.end_a[s]) != h.find(vs.end_b[s])) exposed_.push_back(s);
     }
     for (Index s : exposed_) {
       burned[s] = 1;
@@ -191,18 +191,8 @@ class Exposure {
   }
 
  private:
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
   const BurnGraph& g_;
   std::vector<Index> unburned_, exposed_;
-  std::vector<int> parent_;
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "pure_complex.hpp"
 
 #include <medax/services/kdtree.hpp>
+#include <medax/union_find.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -8,41 +9,17 @@
 
 namespace medax::et {
 
-namespace {
-
-template <typename T>
-void remap_columns(PropertyMap<T>& map, const std::vector<Index>& keep) {
-  for (auto& [name, column] : map.all()) {
-    std::vector<T> next;
-    next.reserve(keep.size());
-    for (Index i : keep) next.push_back(column[i]);
-    column = std::move(next);
-  }
-}
-
-}  // namespace
-
 PureComplexReport make_pure_complex(MedialComplex& mc, double weld_tolerance) {
   PureComplexReport report;
   const std::size_t nv = mc.num_vertices();
 
-  // 1. Weld: representative = lowest index of each cluster.
-  std::vector<Index> rep(nv);
-  std::iota(rep.begin(), rep.end(), Index(0));
-  auto find = [&](Index x) {
-    while (rep[x] != x) x = rep[x] = rep[rep[x]];
-    return x;
-  };
-  auto unite = [&](Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) rep[std::max(a, b)] = std::min(a, b);
-  };
+  // 1. Weld: representative = lowest index of each cluster (UnionFind's rule).
+  UnionFind weld(nv);
   if (weld_tolerance > 0 && nv > 1) {
     const services::PointIndex index(mc.centres);
     for (Index i = 0; i < nv; ++i)
       for (const auto& [j, d] : index.within(mc.centres[i], weld_tolerance))
-        if (j != i) unite(i, j);
+        if (j != i) weld.unite(i, j);
   } else {
     std::vector<Index> order(nv);
     std::iota(order.begin(), order.end(), Index(0));
@@ -52,10 +29,10 @@ PureComplexReport make_pure_complex(MedialComplex& mc, double weld_tolerance) {
     };
     std::sort(order.begin(), order.end(), less);
     for (std::size_t k = 1; k < order.size(); ++k)
-      if (mc.centres[order[k]] == mc.centres[order[k - 1]]) unite(order[k - 1], order[k]);
+      if (mc.centres[order[k]] == mc.centres[order[k - 1]]) weld.unite(order[k - 1], order[k]);
   }
   for (Index i = 0; i < nv; ++i) {
-    const Index r = find(i);
+    const Index r = weld.find(i);
     if (r != i) {
       ++report.welded_vertices;
       report.max_weld_radius_gap = std::max(report.max_weld_radius_gap, std::abs(mc.radii[i] - mc.radii[r]));
@@ -66,13 +43,12 @@ PureComplexReport make_pure_complex(MedialComplex& mc, double weld_tolerance) {
     }
   }
 
-  // 2. Faces: remap, drop degenerate and duplicates.
+  // 2. Faces: on the welded vertices (rewritten in place), drop degenerate and duplicates.
   std::vector<Index> keep_faces;
-  std::vector<Tri> faces;
   {
     std::vector<std::pair<Tri, Index>> keys;  // sorted corners, face index
     for (Index f = 0; f < mc.faces.size(); ++f) {
-      Tri t = {find(mc.faces[f][0]), find(mc.faces[f][1]), find(mc.faces[f][2])};
+      Tri t = {weld.find(mc.faces[f][0]), weld.find(mc.faces[f][1]), weld.find(mc.faces[f][2])};
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
         ++report.degenerate_faces;
         continue;
@@ -93,22 +69,23 @@ PureComplexReport make_pure_complex(MedialComplex& mc, double weld_tolerance) {
     for (Index f = 0; f < mc.faces.size(); ++f)
       if (keep[f]) {
         keep_faces.push_back(f);
-        faces.push_back({find(mc.faces[f][0]), find(mc.faces[f][1]), find(mc.faces[f][2])});
+        for (Index& v : mc.faces[f]) v = weld.find(v);
       }
   }
 
   // 3. Dangling edges: listed edges that are no side of a kept face.
   {
     std::vector<std::uint64_t> sides;
-    for (const Tri& t : faces)
+    for (Index f : keep_faces)
       for (int j = 0; j < 3; ++j) {
+        const Tri& t = mc.faces[f];
         const Index a = std::min(t[j], t[(j + 1) % 3]), b = std::max(t[j], t[(j + 1) % 3]);
         sides.push_back((std::uint64_t(a) << 32) | b);
       }
     std::sort(sides.begin(), sides.end());
     std::vector<std::uint64_t> listed;
     for (const Segment& e : mc.edges) {
-      const Index a = find(e[0]), b = find(e[1]);
+      const Index a = weld.find(e[0]), b = weld.find(e[1]);
       if (a == b) continue;
       listed.push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
     }
@@ -120,32 +97,25 @@ PureComplexReport make_pure_complex(MedialComplex& mc, double weld_tolerance) {
 
   // 4. Vertices on some kept face.
   std::vector<char> used(nv, 0);
-  for (const Tri& t : faces)
-    for (Index v : t) used[v] = 1;
-  std::vector<Index> keep_vertices, new_index(nv, 0xffffffffu);
+  for (Index f : keep_faces)
+    for (Index v : mc.faces[f]) used[v] = 1;
+  std::vector<Index> keep_vertices;
   for (Index v = 0; v < nv; ++v)
-    if (used[v]) new_index[v] = static_cast<Index>(keep_vertices.size()), keep_vertices.push_back(v);
-    else if (find(v) == v) ++report.isolated_vertices;
+    if (used[v]) keep_vertices.push_back(v);
+    else if (weld.find(v) == v) ++report.isolated_vertices;
 
-  MedialComplex out;
-  for (Index v : keep_vertices) out.add_vertex(mc.centres[v], mc.radii[v]);
-  for (const Tri& t : faces) out.add_face(new_index[t[0]], new_index[t[1]], new_index[t[2]]);
-  out.close_edges();
-  out.vertex_props = std::move(mc.vertex_props);
-  remap_columns(out.vertex_props.fields, keep_vertices);
-  remap_columns(out.vertex_props.labels, keep_vertices);
-  out.face_props = std::move(mc.face_props);
-  remap_columns(out.face_props.fields, keep_faces);
-  remap_columns(out.face_props.labels, keep_faces);
-  if (mc.generators.size() == nv) {
+  // 5. The kept vertices and faces with every column (kernel subcomplex), each survivor with
+  // the generators of its cluster; edges rebuilt as the faces' sides, without the old edge
+  // columns.
+  if (!mc.generators.empty())
     for (Index v : keep_vertices) {
-      auto g = std::move(mc.generators[v]);
+      auto& g = mc.generators[v];
       std::sort(g.begin(), g.end());
       g.erase(std::unique(g.begin(), g.end()), g.end());
-      out.generators.push_back(std::move(g));
     }
-    out.generator_kind = mc.generator_kind;
-  }
+  MedialComplex out = mc.subcomplex(keep_vertices, {}, keep_faces);
+  out.edge_props = {};
+  out.close_edges();
   mc = std::move(out);
   return report;
 }

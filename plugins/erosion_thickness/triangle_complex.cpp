@@ -1,5 +1,9 @@
 #include "triangle_complex.hpp"
 
+#include <medax/union_find.hpp>
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -24,15 +28,14 @@ TriangleComplex build_triangle_complex(std::vector<Vec3> points, std::vector<dou
   cx.radii = std::move(radii);
   cx.triangles = std::move(triangles);
   const std::size_t nv = cx.points.size(), nt = cx.triangles.size();
-  if (cx.radii.size() != nv) throw std::invalid_argument("build_triangle_complex: one radius per point");
+  if (cx.radii.size() != nv) throw std::invalid_argument("one radius per point");
   for (std::size_t t = 0; t < nt; ++t) {
     const Tri& f = cx.triangles[t];
     for (int j = 0; j < 3; ++j)
-      if (f[j] >= nv) throw std::invalid_argument("build_triangle_complex: triangle " + std::to_string(t) +
-                                                  " has a vertex index out of range");
+      if (f[j] >= nv) throw std::invalid_argument(fmt::format("triangle {} has a vertex index out of range", t));
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
-      throw std::invalid_argument("build_triangle_complex: triangle " + std::to_string(t) +
-                                  " repeats a vertex; clean the complex first (`pure_complex`)");
+      throw std::invalid_argument(
+          fmt::format("triangle {} repeats a vertex; clean the complex first (`pure_complex`)", t));
   }
 
   // Unique edges: sort (key, triangle, side) records.
@@ -79,30 +82,6 @@ TriangleComplex build_triangle_complex(std::vector<Vec3> points, std::vector<dou
   return cx;
 }
 
-namespace {
-
-struct SmallUnionFind {
-  std::vector<int> parent;
-  void reset(std::size_t n) {
-    parent.resize(n);
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    if (a > b) std::swap(a, b);
-    parent[b] = a;
-    return true;
-  }
-};
-
-}  // namespace
-
 VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
   const std::size_t nv = cx.num_vertices(), nt = cx.num_triangles();
   VertexSectors vs;
@@ -120,7 +99,6 @@ VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
   std::vector<int> ends_count;
   std::vector<std::array<int, 2>> ends;
   std::vector<Index> h_edge_ids;
-  SmallUnionFind uf, huf;
 
   for (std::size_t v = 0; v < nv; ++v) {
     const Index begin = cx.vert_tri_begin[v], deg = cx.vert_tri_begin[v + 1] - begin;
@@ -139,20 +117,20 @@ VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
     }
     std::sort(links.begin(), links.end(),
               [](const Link& a, const Link& b) { return a.edge < b.edge || (a.edge == b.edge && a.local < b.local); });
-    uf.reset(deg);
+    UnionFind uf(deg);
     for (std::size_t i = 0; i + 1 < links.size(); ++i)
-      if (links[i].edge == links[i + 1].edge && cx.edge_degree(links[i].edge) == 2) uf.unite(links[i].local, links[i + 1].local);
+      if (links[i].edge == links[i + 1].edge && cx.edge_degree(links[i].edge) == 2) uf.unite(static_cast<Index>(links[i].local), static_cast<Index>(links[i + 1].local));
     // Sector ids in order of their first triangle.
     root_to_sector.assign(deg, -1);
     sector_of_local.assign(deg, -1);
     int ns = 0;
     for (Index i = 0; i < deg; ++i) {
-      const int r = uf.find(static_cast<int>(i));
+      const Index r = uf.find(i);
       if (root_to_sector[r] < 0) root_to_sector[r] = ns++;
       sector_of_local[i] = root_to_sector[r];
     }
     if (ns > 0xfffe)
-      throw std::runtime_error("erosion thickness: vertex " + std::to_string(v) + " has too many sectors");
+      throw std::runtime_error(fmt::format("vertex {} has too many sectors", v));
     // H nodes: link nodes (edges) of degree != 2, in edge order.
     h_edge_ids.clear();
     ends_count.assign(ns, 0);
@@ -171,12 +149,12 @@ VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
       else if (ends_count[s] == 1) ends[s][1] = ends[s][0];  // cannot happen for chains; be safe
     }
     if (nh > 0xfffe)
-      throw std::runtime_error("erosion thickness: vertex " + std::to_string(v) + " has too many link nodes");
+      throw std::runtime_error(fmt::format("vertex {} has too many link nodes", v));
     vs.h_nodes[v] = static_cast<std::uint16_t>(nh);
     // ∂G: H_v is a forest.
-    huf.reset(nh);
+    UnionFind huf(static_cast<std::size_t>(nh));
     bool forest = true;
-    for (int s = 0; s < ns && forest; ++s) forest = huf.unite(ends[s][0], ends[s][1]);
+    for (int s = 0; s < ns && forest; ++s) forest = huf.unite(static_cast<Index>(ends[s][0]), static_cast<Index>(ends[s][1]));
     vs.boundary[v] = forest ? 1 : 0;
 
     for (Index i = 0; i < deg; ++i) {

@@ -29,11 +29,14 @@
 
 namespace medax::et {
 
+/// Thresholds in the complex's units. The et_skeleton stage binds these fields as its parameters,
+/// as fractions of the reference length L (the defaults are the paper's on a unit box), and
+/// passes theta × L, phi2 × L², phi1 × L to compute_skeleton.
 struct SkeletonOptions {
-  double theta2 = 0.02;   ///< absolute ET_M threshold for sheets
-  double theta1 = 0.04;   ///< absolute ET_C threshold for curves
-  double phi2 = 0.0005;   ///< absolute area below which protected sheet components are dropped
-  double phi1 = 0.0;      ///< absolute length below which protected curve components are dropped
+  double theta2 = 0.02;   ///< ET_M threshold for sheets
+  double theta1 = 0.04;   ///< ET_C threshold for curves
+  double phi2 = 0.0005;   ///< area below which protected sheet components are dropped
+  double phi1 = 0.0;      ///< length below which protected curve components are dropped
   bool coarsen = true;    ///< write input triangles that survive whole as themselves (see compute_skeleton)
 };
 

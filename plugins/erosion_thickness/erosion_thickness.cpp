@@ -1,10 +1,12 @@
 #include "erosion_thickness.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
-#include <stdexcept>
 
 namespace medax::et {
 
@@ -21,15 +23,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// FNV-1a over 64-bit words: enough to tell two complexes apart, not a cryptographic hash.
+class WordHash {
+ public:
+  void add(std::uint64_t w) {
+    h_ ^= w;
+    h_ *= 0x100000001b3ull;
+  }
+  void add(double d) {
+    std::uint64_t w;
+    std::memcpy(&w, &d, sizeof w);
+    add(w);
+  }
+  std::uint64_t value() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 0xcbf29ce484222325ull;
+};
+
 }  // namespace
 
-double reference_length(const Shape& shape, const MedialComplex& medial, const std::string& relative_to) {
-  if (relative_to == "absolute") return 1.0;
+double reference_length(const Shape& shape, const MedialComplex& medial, RelativeTo relative_to) {
+  if (relative_to == RelativeTo::Absolute) return 1.0;
   double l = 0;
-  if (relative_to == "shape_max_side")
+  if (relative_to == RelativeTo::ShapeMaxSide)
     l = !shape.mesh.vertices.empty() ? max_side(shape.mesh.vertices) : max_side(shape.samples.points);
-  else if (relative_to != "complex_max_side")
-    throw std::invalid_argument("relative_to must be shape_max_side, complex_max_side or absolute");
   if (!(l > 0)) l = max_side(medial.centres);
   if (!(l > 0)) l = 1.0;
   return l;
@@ -60,15 +78,33 @@ std::unique_ptr<EtRun> run_erosion_thickness(const MedialComplex& medial, double
   return run;
 }
 
+ComplexFingerprint fingerprint(const MedialComplex& medial) {
+  ComplexFingerprint f;
+  f.vertices = medial.num_vertices();
+  f.edges = medial.edges.size();
+  f.faces = medial.faces.size();
+  WordHash h;
+  for (const Vec3& c : medial.centres) h.add(c.x()), h.add(c.y()), h.add(c.z());
+  for (double r : medial.radii) h.add(r);
+  for (const Segment& e : medial.edges) h.add((std::uint64_t(e[0]) << 32) | e[1]);
+  for (const Tri& t : medial.faces) h.add((std::uint64_t(t[0]) << 32) | t[1]), h.add(std::uint64_t(t[2]));
+  f.hash = h.value();
+  return f;
+}
+
+std::string to_string(const ComplexFingerprint& f) {
+  return fmt::format("V {} E {} F {}", f.vertices, f.edges, f.faces);
+}
+
 void store_erosion_thickness(const EtRun& run, MedialComplex& medial) {
   const std::size_t nv = medial.num_vertices();
-  auto& bt = medial.vertex_props.fields.add("bt", nv);
-  auto& et = medial.vertex_props.fields.add("et", nv);
+  auto& bt = medial.add(kBt);
+  auto& et = medial.add(kEt);
   for (std::size_t v = 0; v < nv; ++v) {
     bt[v] = run.burn.bt[v];
     et[v] = std::isinf(bt[v]) ? kInf : bt[v] - medial.radii[v];
   }
-  auto& fet = medial.face_props.fields.add("et", medial.faces.size());
+  auto& fet = medial.add(kFaceEt);
   for (std::size_t f = 0; f < medial.faces.size(); ++f) {
     double s = 0;
     for (Index v : medial.faces[f]) s += et[v];
@@ -83,13 +119,12 @@ void store_medial_curves(const MedialCurves& c, MedialComplex& medial) {
   out.edges = c.edges;
   out.faces = c.faces;
   out.close_edges();
-  auto& vf = out.vertex_props.fields;
-  vf.add("bt_m", c.points.size()) = c.bt_m;
-  vf.add("bt_c", c.points.size()) = c.bt_c;
-  vf.add("et_c", c.points.size()) = c.et_c;
-  auto& kind = out.vertex_props.labels.add("curve_kind", c.points.size());
+  out.add(kBtM) = c.bt_m;
+  out.add(kBtC) = c.bt_c;
+  out.add(kEtC) = c.et_c;
+  auto& kind = out.add(kCurveKind);
   std::copy(c.kind.begin(), c.kind.end(), kind.begin());
-  auto& eet = out.edge_props.fields.add("et_c", out.edges.size());
+  auto& eet = out.add(kEdgeEtC);
   for (std::size_t e = 0; e < out.edges.size(); ++e) {
     const double a = c.et_c[out.edges[e][0]], b = c.et_c[out.edges[e][1]];
     eet[e] = std::isinf(a) || std::isinf(b) ? kInf : 0.5 * (a + b);
@@ -109,21 +144,22 @@ void store_skeleton(const Skeleton& s, MedialComplex& medial) {
     return std::make_pair(std::min(s.edges[i][0], s.edges[i][1]), std::max(s.edges[i][0], s.edges[i][1]));
   };
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sorted(a) < sorted(b); });
-  auto& curve = out.edge_props.labels.add("medial_curve", order.size());
-  auto& eet = out.edge_props.fields.add("et_c", order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const auto [a, b] = sorted(order[k]);
+  for (std::size_t k : order) {
+    const auto [a, b] = sorted(k);
     out.edges.push_back({a, b});
+  }
+  auto& curve = out.add(kMedialCurve);
+  auto& eet = out.add(kEdgeEtC);
+  for (std::size_t k = 0; k < order.size(); ++k) {
     curve[k] = s.edge_curve[order[k]];
     eet[k] = s.edge_curve[order[k]] ? s.edge_priority[order[k]] : std::numeric_limits<double>::quiet_NaN();
   }
-  const std::size_t nv = s.points.size();
-  out.vertex_props.fields.add("bt", nv) = s.bt;
-  out.vertex_props.fields.add("et", nv) = s.et;
-  out.vertex_props.fields.add("et_c", nv) = s.et_c;
-  auto& kind = out.vertex_props.labels.add("et_point", nv);
+  out.add(kBt) = s.bt;
+  out.add(kEt) = s.et;
+  out.add(kEtC) = s.et_c;
+  auto& kind = out.add(kEtPoint);
   std::copy(s.kind.begin(), s.kind.end(), kind.begin());
-  out.face_props.fields.add("et", s.faces.size()) = s.face_priority;
+  out.add(kFaceEt) = s.face_priority;
   medial = std::move(out);
 }
 

@@ -12,6 +12,7 @@
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
 #include <medax/kernel/runner.hpp>
+#include <medax/plugin.hpp>
 #include <medax/services/topology.hpp>
 #include <medax/testing/shapes.hpp>
 #include <test_paths.hpp>
@@ -19,7 +20,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -33,10 +36,25 @@ namespace {
 template <typename StageT>
 StageT configured(std::initializer_list<std::pair<const char*, ParamValue>> overrides = {}) {
   StageT stage;
-  ParamSet params = default_params(StageT::describe().params);
+  ParamSet params;
   for (const auto& [name, value] : overrides) params.set(name, value);
   stage.configure(params);
   return stage;
+}
+
+std::vector<std::string> param_names(const StageInfo& info) {
+  std::vector<std::string> names;
+  for (const ParamSpec& p : info.params) names.push_back(p.name);
+  return names;
+}
+
+std::string what_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
 }
 
 Shape box_shape(double half) {
@@ -89,6 +107,7 @@ TEST_CASE("erosion_thickness on a complex without triangles gives ET = 0") {
 TEST_CASE("et_medial_curves stage replaces the complex by a tree on a disk-like complex") {
   MedialComplex mc = fx::make_book(1.0, 0.1, 0.3, 0.005, 20, 40);
   BasicContext ctx;
+  configured<ErosionThicknessStage>().measure(box_shape(0.5), mc, ctx);
   configured<MedialCurvesStage>().connect(box_shape(0.5), mc, ctx);
   const services::ComplexTopology t = services::complex_topology(mc);
   CHECK(t.b0 == 1);
@@ -107,6 +126,7 @@ TEST_CASE("et_skeleton stage keeps the topology and labels curve edges") {
   MedialComplex mc = fx::make_annulus(0.3, 0.6, 4, 24, 0.02);
   const services::ComplexTopology before = services::complex_topology(mc);
   BasicContext ctx;
+  configured<ErosionThicknessStage>().measure(box_shape(0.5), mc, ctx);
   configured<EtSkeletonStage>({{"theta2", INFINITY}, {"theta1", INFINITY}}).simplify(box_shape(0.5), mc, ctx);
   mc.validate();
   const services::ComplexTopology after = services::complex_topology(mc);
@@ -117,9 +137,155 @@ TEST_CASE("et_skeleton stage keeps the topology and labels curve edges") {
   CHECK(mc.vertex_props.labels.get("et_point").size() == mc.num_vertices());
   // Defaults on the book keep part of the long page as a sheet.
   MedialComplex book = fx::make_book(1.0, 0.1, 0.3, 0.005, 20, 40);
+  configured<ErosionThicknessStage>().measure(box_shape(0.5), book, ctx);
   configured<EtSkeletonStage>().simplify(box_shape(0.5), book, ctx);
   CHECK(!book.faces.empty());
   for (double e : book.face_props.fields.get("et")) CHECK(e > 0.02);
+}
+
+namespace {
+
+/// A context over a scene's data whose stage id can be set, to run stages one after another as
+/// the runner does (prepare, then run, each with its own id).
+class SceneContext : public Context {
+ public:
+  explicit SceneContext(SceneData& data) : data_(data) {}
+  void info(std::string_view) override {}
+  void warn(std::string_view) override {}
+  void progress(double, std::string_view) override {}
+  bool cancelled() const override { return false; }
+  std::mt19937_64& rng() override { return rng_; }
+  std::uint64_t seed() const override { return 0; }
+  std::filesystem::path write_output(const std::string&, const std::function<void(std::ostream&)>&) override {
+    return {};
+  }
+  const std::string& stage_id() const override { return id; }
+  SceneData& data() override { return data_; }
+  std::string id = "stage";
+
+ private:
+  SceneData& data_;
+  std::mt19937_64 rng_;
+};
+
+void run_stage(Stage& stage, const std::string& id, Scene& scene) {
+  SceneContext ctx(scene.data);
+  ctx.id = id;
+  stage.prepare(scene);
+  stage.run(scene, ctx);
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+/// Equal elements and columns, doubles compared bit for bit (NaN included).
+void require_identical(const MedialComplex& a, const MedialComplex& b) {
+  REQUIRE(a.num_vertices() == b.num_vertices());
+  for (std::size_t v = 0; v < a.num_vertices(); ++v) REQUIRE(std::memcmp(&a.centres[v], &b.centres[v], sizeof(Vec3)) == 0);
+  CHECK(same_bits(a.radii, b.radii));
+  CHECK(a.edges == b.edges);
+  CHECK(a.faces == b.faces);
+  for (Element e : {Element::Vertex, Element::Edge, Element::Face}) {
+    const ElementProperties &pa = a.props(e), &pb = b.props(e);
+    REQUIRE(pa.fields.all().size() == pb.fields.all().size());
+    for (const auto& [name, column] : pa.fields.all()) {
+      INFO(name);
+      REQUIRE(pb.fields.has(name));
+      CHECK(same_bits(column, pb.fields.get(name)));
+    }
+    CHECK(pa.labels.all() == pb.labels.all());
+  }
+}
+
+}  // namespace
+
+TEST_CASE("The burning stages declare their parameters once; the later stages take the burn's") {
+  CHECK(param_names(stage_info<ErosionThicknessStage>()) ==
+        std::vector<std::string>{"omega", "min_samples", "relative_to", "write_forest"});
+  CHECK(param_names(stage_info<MedialCurvesStage>()).empty());
+  CHECK(param_names(stage_info<EtSkeletonStage>()) == std::vector<std::string>{"theta2", "theta1", "phi2", "phi1"});
+  CHECK(param_names(stage_info<PureComplexStage>()) == std::vector<std::string>{"weld_tolerance"});
+  CHECK(param_names(stage_info<ObjectAngleStage>()) == std::vector<std::string>{"tolerance"});
+  const StageInfo et = stage_info<ErosionThicknessStage>();
+  CHECK(et.params[2].choices == std::vector<std::string>{"shape_max_side", "complex_max_side", "absolute"});
+  CHECK(et.params[2].default_text() == "shape_max_side");
+  // The defaults live in the options structs.
+  CHECK(std::get<double>(et.params[0].default_value) == BurnOptions{}.omega);
+  CHECK(std::get<double>(stage_info<EtSkeletonStage>().params[2].default_value) == SkeletonOptions{}.phi2);
+}
+
+TEST_CASE("One burn feeds et_medial_curves and et_skeleton: the same complexes as burning in each stage") {
+  const Shape shape = box_shape(0.5);  // L = 1
+  for (const MedialComplex& input :
+       {fx::make_book(1.0, 0.1, 0.3, 0.005, 20, 40), fx::make_annulus(0.3, 0.6, 4, 24, 0.02)}) {
+    // The stages, as the runner calls them.
+    Scene scene;
+    scene.shape = shape;
+    scene.medial = input;
+    ErosionThicknessStage et = configured<ErosionThicknessStage>({{"omega", 0.01}});
+    run_stage(et, "erosion_thickness", scene);
+    const MedialComplex with_et = *scene.medial;
+    Scene curves_scene = scene;
+    MedialCurvesStage curves;
+    run_stage(curves, "et_medial_curves", curves_scene);
+    EtSkeletonStage skeleton = configured<EtSkeletonStage>({{"theta2", 0.03}, {"phi2", 0.001}});
+    run_stage(skeleton, "et_skeleton", scene);
+    // What the stages computed before the burn was shared: each burned the complex itself.
+    const auto run = run_erosion_thickness(with_et, 0.01, 1);
+    const Subdivision sub = build_subdivision(run->graph, run->burn);
+    MedialComplex expected_curves = with_et;
+    store_medial_curves(extract_medial_curves(run->graph, sub), expected_curves);
+    require_identical(*curves_scene.medial, expected_curves);
+    SkeletonOptions o;
+    o.theta2 = 0.03;
+    o.phi2 = 0.001;
+    MedialComplex expected_skeleton;
+    store_skeleton(compute_skeleton(run->graph, sub, run->loose_edges, o), expected_skeleton);
+    require_identical(*scene.medial, expected_skeleton);
+  }
+}
+
+TEST_CASE("et_medial_curves and et_skeleton need the burn of the complex they get") {
+  const MedialComplex book = fx::make_book(1.0, 0.1, 0.3, 0.005, 20, 40);
+  Scene scene;
+  scene.shape = box_shape(0.5);
+  scene.medial = book;
+  // No burn: the error names the stage to put first.
+  EtSkeletonStage skeleton;
+  MedialCurvesStage curves;
+  CHECK_THROWS_AS(skeleton.prepare(scene), MissingData);
+  CHECK(what_of([&] { curves.prepare(scene); }).find("`erosion_thickness`") != std::string::npos);
+  BasicContext ctx;
+  MedialComplex copy = book;
+  CHECK_THROWS_AS(curves.connect(scene.shape, copy, ctx), MissingData);
+  // After et_medial_curves replaced the complex, et_skeleton refuses the old burn and names it.
+  ErosionThicknessStage et;
+  run_stage(et, "erosion_thickness", scene);
+  run_stage(curves, "curves", scene);
+  const std::string stale = what_of([&] { run_stage(skeleton, "et_skeleton", scene); });
+  INFO(stale);
+  CHECK(stale.find("not the one `erosion_thickness` burned") != std::string::npos);
+  CHECK(stale.find("`curves` replaced it") != std::string::npos);
+  CHECK(stale.find("run `erosion_thickness` right before this stage") != std::string::npos);
+  // A burn of the curves themselves is fine (what et_skeleton used to do after the curves).
+  run_stage(et, "erosion_thickness_2", scene);
+  CHECK_NOTHROW(run_stage(skeleton, "et_skeleton", scene));
+  // Any other change of the complex is refused too, without a name.
+  Scene edited;
+  edited.shape = box_shape(0.5);
+  edited.medial = book;
+  run_stage(et, "erosion_thickness", edited);
+  edited.medial->radii[3] *= 1.5;
+  const std::string changed = what_of([&] { skeleton.prepare(edited); });
+  INFO(changed);
+  CHECK(changed.find("a stage after it changed the complex") != std::string::npos);
+  // Fields added in between (another measure) do not change the complex.
+  edited.medial = book;
+  run_stage(et, "erosion_thickness", edited);
+  RadiusMeasureStage radius;
+  run_stage(radius, "radius_measure", edited);
+  CHECK_NOTHROW(run_stage(skeleton, "et_skeleton", edited));
 }
 
 TEST_CASE("pure_complex welds, drops degenerate and duplicate triangles, dangling edges and isolated vertices") {
@@ -133,6 +299,7 @@ TEST_CASE("pure_complex welds, drops degenerate and duplicate triangles, danglin
   mc.add_face(0, 0, 1);  // degenerate
   mc.add_edge(1, 6);     // dangling
   mc.add_edge(0, 1);
+  mc.edge_props.labels.add("sheet", 2) = {7, 8};
   mc.vertex_props.fields.add("w", 7) = {0, 1, 2, 3, 4, 5, 6};
   mc.face_props.labels.add("id", 4) = {10, 11, 12, 13};
   mc.generators = {{0}, {1}, {2}, {3}, {4}, {5}, {6}};
@@ -149,6 +316,7 @@ TEST_CASE("pure_complex welds, drops degenerate and duplicate triangles, danglin
   CHECK(mc.vertex_props.fields.get("w") == std::vector<double>{0, 1, 2, 3});
   CHECK(mc.face_props.labels.get("id") == std::vector<int>{10, 11});
   CHECK(mc.generators[3] == std::vector<Index>{3, 4});
+  CHECK(mc.edge_props.empty());  // the edges are rebuilt as the faces' sides
   mc.validate();
   // With a tolerance, nearby centres weld too.
   MedialComplex near;
@@ -256,7 +424,7 @@ TEST_CASE("The erosion_thickness package loads and runs in a pipeline", "[pipeli
                                                  "  - plugin: pure_complex\n"
                                                  "  - plugin: erosion_thickness\n"
                                                  "    params: {omega: 0.01}\n"
-                                                 "  - plugin: " + std::string(last) + "\n    params: {omega: 0.01}\n"
+                                                 "  - plugin: " + std::string(last) + "\n"
                                                  "outputs: {medial: [ma, ply]}\n",
                                                  registry, last);
     INFO(result.error);
@@ -270,6 +438,24 @@ TEST_CASE("The erosion_thickness package loads and runs in a pipeline", "[pipeli
     text << ply.rdbuf();
     CHECK(text.str().find(std::string(last) == "et_skeleton" ? "et_point" : "et_c") != std::string::npos);
   }
+  // et_skeleton after et_medial_curves: the burn is of the complex before the curves.
+  const std::string head = "name: et\nseed: 0\ninput: box.off\nmedial_input: book.ma\nstages:\n"
+                           "  - plugin: pure_complex\n  - plugin: erosion_thickness\n  - plugin: et_medial_curves\n";
+  const RunResult stale = test::run_yaml_text(dir, head + "  - plugin: et_skeleton\n", registry, "stale");
+  CHECK(!stale.ok);
+  CHECK(stale.failed_stage == "et_skeleton");
+  CHECK(stale.error.find("et_skeleton: the complex is not the one `erosion_thickness` burned") != std::string::npos);
+  CHECK(stale.error.find("`et_medial_curves` replaced it") != std::string::npos);
+  const RunResult again = test::run_yaml_text(
+      dir, head + "  - {plugin: erosion_thickness, id: burn_curves}\n  - plugin: et_skeleton\n", registry, "again");
+  INFO(again.error);
+  CHECK(again.ok);
+  // Without erosion_thickness, the error says which stage to put first.
+  const RunResult missing = test::run_yaml_text(
+      dir, "name: et\nseed: 0\ninput: box.off\nmedial_input: book.ma\nstages:\n  - plugin: et_skeleton\n",
+      registry, "missing");
+  CHECK(!missing.ok);
+  CHECK(missing.error.find("put a `erosion_thickness` stage before this one") != std::string::npos);
 }
 #endif
 

@@ -98,8 +98,12 @@ ParamSpec& ParamBinder::add(std::string name, std::string& field, std::vector<st
   if (std::find(choices.begin(), choices.end(), field) == choices.end())
     throw std::logic_error(fmt::format("parameter '{}': default '{}' is not one of its choices", spec.name, field));
   spec.default_value = field;
-  spec.choices = std::move(choices);
-  return bind(std::move(spec), [&field](const ParamValue& v) { field = std::get<std::string>(v); });
+  spec.choices = choices;
+  return bind(std::move(spec), [&field, choices = std::move(choices)](const ParamValue& v) {
+    const std::string& text = std::get<std::string>(v);
+    if (std::find(choices.begin(), choices.end(), text) == choices.end()) detail::throw_not_a_choice(text);
+    field = text;
+  });
 }
 
 void ParamBinder::apply(const ParamSet& values) const {
@@ -114,6 +118,9 @@ namespace detail {
 void throw_empty_slot() { throw std::logic_error("a stage parameter was used before a stage was given to it"); }
 void throw_wrong_stage(const std::string& plugin) {
   throw std::invalid_argument(fmt::format("stage '{}' is not of the kind this parameter needs", plugin));
+}
+void throw_not_a_choice(const std::string& text) {
+  throw std::invalid_argument(fmt::format("'{}' is not one of the parameter's choices", text));
 }
 }  // namespace detail
 

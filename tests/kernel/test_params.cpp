@@ -118,6 +118,13 @@ TEST_CASE("configure writes each given value into its field and leaves the other
   stage.configure(whole);
   CHECK(stage.options.limit == 3.0);
 
+  ParamSet not_a_choice;
+  not_a_choice.set("mode", std::string("slow"));
+  CHECK_THROWS_WITH(stage.configure(not_a_choice), Catch::Contains("'slow' is not one of"));
+  not_a_choice.set("mode", std::string("fast"));
+  not_a_choice.set("kind", std::string("z"));
+  CHECK_THROWS_WITH(stage.configure(not_a_choice), Catch::Contains("'z' is not one of"));
+
   ParamSet unknown;
   unknown.set("nope", 1.0);
   CHECK_THROWS_WITH(stage.configure(unknown), Catch::Contains("no parameter named 'nope'"));

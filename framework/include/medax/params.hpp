@@ -139,6 +139,7 @@ const std::string& choice_name(const std::vector<std::pair<std::string, T>>& cho
 namespace detail {
 [[noreturn]] void throw_empty_slot();
 [[noreturn]] void throw_wrong_stage(const std::string& plugin);
+[[noreturn]] void throw_not_a_choice(const std::string& text);
 template <typename T>
 ParamType param_type_of() {
   if constexpr (std::is_same_v<T, bool>) return ParamType::Bool;
@@ -202,7 +203,11 @@ ParamSpec& ParamBinder::add(std::string name, T& field, std::vector<std::pair<st
   return bind(std::move(spec), [&field, choices = std::move(choices)](const ParamValue& v) {
     const std::string& text = std::get<std::string>(v);
     for (const auto& [name, value] : choices)
-      if (name == text) field = value;
+      if (name == text) {
+        field = value;
+        return;
+      }
+    detail::throw_not_a_choice(text);
   });
 }
 

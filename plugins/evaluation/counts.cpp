@@ -1,9 +1,10 @@
 #include "counts.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <stdexcept>
-#include <string>
 
 namespace medax::evaluation {
 
@@ -25,8 +26,7 @@ ElementCounts count_elements(const MedialComplex& medial) {
   std::vector<char> used(nv, 0);
   const auto use = [&](Index v, const char* kind, std::size_t i) {
     if (v >= nv)
-      throw std::invalid_argument(std::string("counts: ") + kind + " " + std::to_string(i) + " refers to vertex " +
-                                  std::to_string(v) + " of " + std::to_string(nv));
+      throw std::invalid_argument(fmt::format("{} {} refers to vertex {} of {}", kind, i, v, nv));
     used[v] = 1;
   };
   for (std::size_t f = 0; f < medial.faces.size(); ++f) {

@@ -5,7 +5,7 @@
 #include <medax/plugin.hpp>
 
 MEDAX_PLUGIN("evaluation", "0.1.0") {
-  registrar.add<medax::evaluation::Reconstruction>();
-  registrar.add<medax::evaluation::Counts>();
-  registrar.add<medax::evaluation::Topology>();
+  registrar.add<medax::evaluation::ReconstructionStage>();
+  registrar.add<medax::evaluation::CountsStage>();
+  registrar.add<medax::evaluation::TopologyStage>();
 }

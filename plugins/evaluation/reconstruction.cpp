@@ -1,5 +1,6 @@
 #include "reconstruction.hpp"
 
+#include <medax/ply.hpp>
 #include <medax/services/closest_point.hpp>
 #include <medax/services/kdtree.hpp>
 #include <medax/services/sampling.hpp>
@@ -71,65 +72,45 @@ Metrics ReconstructionResult::metrics() const {
   return m;
 }
 
-ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
-                                            const ReconstructionOptions& options, std::mt19937_64& rng,
-                                            const Progress& progress) {
-  const auto report = [&](double f, std::string_view what) {
-    if (progress) progress(f, what);
-  };
-  const bool has_mesh = !shape.mesh.empty();
-  if (!has_mesh && shape.samples.empty())
-    throw std::invalid_argument("reconstruction: the shape has neither a mesh nor samples to compare with");
-  if (medial.num_vertices() == 0) throw std::invalid_argument("reconstruction: the medial complex is empty");
+namespace {
 
-  ReconstructionResult result;
-  {
-    const auto [lo, hi] = bbox(surface_points(shape));
-    result.diagonal = (hi - lo).norm();
-  }
-
-  // Surface samples: the mesh vertices that faces use (as the VMAS code does) and optional
-  // area-uniform samples; without a mesh, the shape's samples.
+/// Surface samples: the mesh vertices that faces use (as the VMAS code does) and optional
+/// area-uniform samples; without a mesh, the shape's samples.
+std::vector<Vec3> surface_samples(const Shape& shape, const ReconstructionOptions& options, std::mt19937_64& rng) {
+  if (shape.mesh.empty()) return shape.samples.points;
   std::vector<Vec3> surface;
-  if (has_mesh) {
-    if (options.use_vertices) {
-      std::vector<char> used(shape.mesh.vertices.size(), 0);
-      for (const Tri& f : shape.mesh.faces)
-        for (Index v : f) used.at(v) = 1;
-      for (std::size_t v = 0; v < used.size(); ++v)
-        if (used[v]) surface.push_back(shape.mesh.vertices[v]);
-    }
-    if (options.uniform_samples > 0) {
-      const OrientedSamples s = services::sample_uniform(shape.mesh, options.uniform_samples, rng);
-      surface.insert(surface.end(), s.points.begin(), s.points.end());
-    }
+  if (options.use_vertices) {
+    std::vector<char> used(shape.mesh.vertices.size(), 0);
+    for (const Tri& f : shape.mesh.faces)
+      for (Index v : f) used.at(v) = 1;
+    for (std::size_t v = 0; v < used.size(); ++v)
+      if (used[v]) surface.push_back(shape.mesh.vertices[v]);
+  }
+  if (options.uniform_samples > 0) {
+    const OrientedSamples s = services::sample_uniform(shape.mesh, options.uniform_samples, rng);
+    surface.insert(surface.end(), s.points.begin(), s.points.end());
+  }
+  return surface;
+}
+
+/// `step` enlarged, when the options' guard asks for it, so that ∂E gets at most about
+/// max_envelope_samples points: about 1.5 points per step² of boundary (‖n‖₁ averages 1.5),
+/// and ∂E ≈ the surface.
+double budgeted_step(const Shape& shape, const ReconstructionOptions& options, double step) {
+  if (options.max_envelope_samples == 0 || options.step > 0) return step;
+  double area = 0;
+  if (!shape.mesh.empty()) {
+    area = services::surface_area(shape.mesh);
   } else {
-    surface = shape.samples.points;
+    for (double a : shape.samples.areas) area += a;
   }
-  if (surface.empty())
-    throw std::invalid_argument("reconstruction: no surface samples (vertices: false and surface_samples: 0)");
-  result.surface_samples = surface.size();
+  const double budget = static_cast<double>(options.max_envelope_samples);
+  return 1.5 * area / (step * step) > budget ? std::sqrt(1.5 * area / budget) : step;
+}
 
-  report(0.0, "envelope");
-  const services::Envelope envelope(medial);
-  result.primitives = envelope.primitives().size();
-  result.requested_step = result.step = envelope_step(shape, envelope, options);
-  if (options.max_envelope_samples > 0 && !(options.step > 0)) {
-    // About 1.5 points per step² of boundary (‖n‖₁ averages 1.5), and ∂E ≈ the surface.
-    double area = 0;
-    if (has_mesh) {
-      area = services::surface_area(shape.mesh);
-    } else {
-      for (double a : shape.samples.areas) area += a;
-    }
-    const double budget = static_cast<double>(options.max_envelope_samples);
-    if (1.5 * area / (result.step * result.step) > budget) result.step = std::sqrt(1.5 * area / budget);
-  }
-  result.envelope = envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); });
-  result.envelope_area = result.envelope.total_area();
-
-  // Surface -> envelope.
-  report(0.65, "surface to envelope");
+/// Surface -> envelope: distances from the surface samples to ∂E.
+void measure_surface_to_envelope(const services::Envelope& envelope, const std::vector<Vec3>& surface,
+                                 ReconstructionResult& result) {
   std::vector<double> phi;
   const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi);
   std::size_t inside = 0;
@@ -142,31 +123,81 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
   result.surface_inside_fraction = static_cast<double>(inside) / static_cast<double>(surface.size());
   result.surface_to_envelope_max = mx;
   result.surface_to_envelope_mean = sum / static_cast<double>(surface.size());
+}
 
-  // Envelope -> surface.
-  report(0.75, "envelope to surface");
-  if (result.envelope.size() > 0) {
-    if (has_mesh) {
-      const services::SurfaceDistance distance(shape.mesh);
-      result.envelope_distances = distance.distances(result.envelope.points);
-    } else {
-      const services::PointIndex index(shape.samples.points);
-      result.envelope_distances.resize(result.envelope.size());
-      for (std::size_t i = 0; i < result.envelope.size(); ++i)
-        result.envelope_distances[i] = index.nearest(result.envelope.points[i]).second;
-    }
-    double weighted = 0, area = 0;
-    mx = 0;
-    for (std::size_t i = 0; i < result.envelope.size(); ++i) {
-      weighted += result.envelope.areas[i] * result.envelope_distances[i];
-      area += result.envelope.areas[i];
-      mx = std::max(mx, result.envelope_distances[i]);
-    }
-    result.envelope_to_surface_max = mx;
-    result.envelope_to_surface_mean = area > 0 ? weighted / area : 0.0;
+/// Envelope -> surface: distances from the points of ∂E to the mesh (or the nearest sample),
+/// the mean weighted by area.
+void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& result) {
+  if (result.envelope.size() == 0) return;
+  if (!shape.mesh.empty()) {
+    const services::SurfaceDistance distance(shape.mesh);
+    result.envelope_distances = distance.distances(result.envelope.points);
+  } else {
+    const services::PointIndex index(shape.samples.points);
+    result.envelope_distances.resize(result.envelope.size());
+    for (std::size_t i = 0; i < result.envelope.size(); ++i)
+      result.envelope_distances[i] = index.nearest(result.envelope.points[i]).second;
   }
+  double weighted = 0, area = 0, mx = 0;
+  for (std::size_t i = 0; i < result.envelope.size(); ++i) {
+    weighted += result.envelope.areas[i] * result.envelope_distances[i];
+    area += result.envelope.areas[i];
+    mx = std::max(mx, result.envelope_distances[i]);
+  }
+  result.envelope_to_surface_max = mx;
+  result.envelope_to_surface_mean = area > 0 ? weighted / area : 0.0;
+}
+
+}  // namespace
+
+ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
+                                            const ReconstructionOptions& options, std::mt19937_64& rng,
+                                            const Progress& progress) {
+  const auto report = [&](double f, std::string_view what) {
+    if (progress) progress(f, what);
+  };
+  if (shape.mesh.empty() && shape.samples.empty())
+    throw std::invalid_argument("the shape has neither a mesh nor samples to compare with");
+  if (medial.num_vertices() == 0) throw std::invalid_argument("the medial complex is empty");
+
+  ReconstructionResult result;
+  {
+    const auto [lo, hi] = bbox(surface_points(shape));
+    result.diagonal = (hi - lo).norm();
+  }
+  const std::vector<Vec3> surface = surface_samples(shape, options, rng);
+  if (surface.empty())
+    throw std::invalid_argument("no surface samples (vertices: false and surface_samples: 0)");
+  result.surface_samples = surface.size();
+
+  report(0.0, "envelope");
+  const services::Envelope envelope(medial);
+  result.primitives = envelope.primitives().size();
+  result.requested_step = envelope_step(shape, envelope, options);
+  result.step = budgeted_step(shape, options, result.requested_step);
+  result.envelope = envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); });
+  result.envelope_area = result.envelope.total_area();
+
+  report(0.65, "surface to envelope");
+  measure_surface_to_envelope(envelope, surface, result);
+  report(0.75, "envelope to surface");
+  measure_envelope_to_surface(shape, result);
   report(1.0, "done");
   return result;
+}
+
+void write_envelope_ply(std::ostream& out, const ReconstructionResult& result, const Similarity& frame) {
+  const services::EnvelopeSamples& e = result.envelope;
+  std::vector<Vec3> points(e.size());
+  for (std::size_t i = 0; i < e.size(); ++i) points[i] = frame.apply(e.points[i]);
+  PlyElement vertex("vertex", e.size());
+  vertex.positions(points)
+      .real("nx", [&e](std::size_t i) { return e.normals[i].x(); })
+      .real("ny", [&e](std::size_t i) { return e.normals[i].y(); })
+      .real("nz", [&e](std::size_t i) { return e.normals[i].z(); })
+      .real("area", [&e, &frame](std::size_t i) { return e.areas[i] * frame.scale * frame.scale; })
+      .real("distance", [&result, &frame](std::size_t i) { return frame.apply_length(result.envelope_distances[i]); });
+  write_ply(out, "medax reconstruction: points on the envelope boundary, input frame", {vertex});
 }
 
 }  // namespace medax::evaluation

@@ -6,6 +6,7 @@
 #include <medax/surface.hpp>
 
 #include <functional>
+#include <iosfwd>
 #include <random>
 #include <string_view>
 
@@ -48,6 +49,11 @@ using Progress = std::function<void(double, std::string_view)>;
 ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
                                             const ReconstructionOptions& options, std::mt19937_64& rng,
                                             const Progress& progress = {});
+
+/// Writes the envelope's boundary points as an ASCII PLY vertex element: x y z, nx ny nz, area and
+/// distance to the surface, mapped by `frame` (the shape's map to the input's frame). Reals are
+/// written in the shortest form that reads back exactly (medax/ply.hpp).
+void write_envelope_ply(std::ostream& out, const ReconstructionResult& result, const Similarity& frame);
 
 /// The grid step `options` give for this shape and envelope (see ReconstructionOptions).
 double envelope_step(const Shape& shape, const services::Envelope& envelope, const ReconstructionOptions& options);

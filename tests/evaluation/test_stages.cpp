@@ -9,6 +9,7 @@
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
 #include <medax/kernel/runner.hpp>
+#include <medax/plugin.hpp>
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
 #include <test_paths.hpp>
@@ -45,10 +46,10 @@ MedialComplex one_sphere(double r) {
   return mc;
 }
 
-Metrics run_stage(EvaluationStage& stage, const std::vector<ParamSpec>& specs, const Shape& shape,
-                  const MedialComplex& mc, const std::map<std::string, ParamValue>& changes = {},
-                  std::uint64_t seed = 1) {
-  ParamSet params = default_params(specs);
+/// Runs a fresh stage at its defaults with `changes` applied.
+Metrics run_stage(EvaluationStage& stage, const Shape& shape, const MedialComplex& mc,
+                  const std::map<std::string, ParamValue>& changes = {}, std::uint64_t seed = 1) {
+  ParamSet params;
   for (const auto& [name, value] : changes) params.set(name, value);
   stage.configure(params);
   BasicContext ctx(seed);
@@ -57,8 +58,8 @@ Metrics run_stage(EvaluationStage& stage, const std::vector<ParamSpec>& specs, c
 
 Metrics reconstruction(const Shape& shape, const MedialComplex& mc, const std::map<std::string, ParamValue>& changes = {},
                        std::uint64_t seed = 1) {
-  evaluation::Reconstruction stage;
-  return run_stage(stage, evaluation::Reconstruction::describe().params, shape, mc, changes, seed);
+  evaluation::ReconstructionStage stage;
+  return run_stage(stage, shape, mc, changes, seed);
 }
 
 }  // namespace
@@ -219,8 +220,8 @@ TEST_CASE("reconstruction: export_envelope writes the boundary points in the inp
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 3);
   shape.to_input = Similarity{2.0, Vec3(1, 0, 0)};  // the input was twice as big, shifted
-  evaluation::Reconstruction stage;
-  ParamSet params = default_params(evaluation::Reconstruction::describe().params);
+  evaluation::ReconstructionStage stage;
+  ParamSet params;
   params.set("export_envelope", true);
   params.set("resolution", 30LL);
   stage.configure(params);
@@ -231,34 +232,75 @@ TEST_CASE("reconstruction: export_envelope writes the boundary points in the inp
   std::istringstream in(ctx.files["recon_envelope.ply"]);
   std::string line;
   std::size_t count = 0;
-  while (std::getline(in, line) && line != "end_header")
+  std::vector<std::string> properties;
+  while (std::getline(in, line) && line != "end_header") {
     if (line.rfind("element vertex ", 0) == 0) count = std::stoul(line.substr(15));
+    if (line.rfind("property double ", 0) == 0) properties.push_back(line.substr(16));
+  }
+  CHECK(properties == std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz", "area", "distance"});
   CHECK(count == m.at("envelope_samples"));
-  std::size_t rows = 0;
+  // The same measurement, to compare the values read back with: they are exact (the writer
+  // prints the shortest form that reads back to the same double).
+  evaluation::ReconstructionOptions options;
+  options.resolution = 30;
+  std::mt19937_64 rng(0);
+  const evaluation::ReconstructionResult r = evaluation::measure_reconstruction(shape, one_sphere(0.5), options, rng);
+  REQUIRE(r.envelope.size() == count);
+  std::size_t rows = 0, exact = 0;
   double x, y, z, nx, ny, nz, area, distance;
   while (in >> x >> y >> z >> nx >> ny >> nz >> area >> distance) {
-    ++rows;
     CHECK((Vec3(x, y, z) - Vec3(1, 0, 0)).norm() == Approx(2 * 0.5).margin(1e-9));  // radius 0.5, scaled
     CHECK(distance == Approx(2 * 0.5).margin(2 * icosphere_sag(shape.mesh, 1.0) + 1e-9));
+    if (rows < count && Vec3(x, y, z) == shape.to_input.apply(r.envelope.points[rows]) &&
+        Vec3(nx, ny, nz) == r.envelope.normals[rows] && area == r.envelope.areas[rows] * 4.0 &&
+        distance == 2.0 * r.envelope_distances[rows])
+      ++exact;
+    ++rows;
   }
   CHECK(rows == count);
+  CHECK(exact == count);
 }
 
 TEST_CASE("reconstruction: refuses what it cannot measure", "[reconstruction]") {
-  evaluation::Reconstruction stage;
-  ParamSet params = default_params(evaluation::Reconstruction::describe().params);
+  evaluation::ReconstructionStage stage;
+  ParamSet params;
   params.set("vertices", false);
   stage.configure(params);
+  CHECK_THROWS_WITH(stage.check_params(), Catch::Contains("surface_samples"));
   Scene scene;
   scene.shape.mesh = testing::make_sphere(1.0, 1);
   CHECK_THROWS_AS(stage.prepare(scene), std::invalid_argument);  // no medial complex
   scene.medial = MedialComplex{};
-  CHECK_THROWS_AS(stage.prepare(scene), std::invalid_argument);  // empty complex
+  CHECK_THROWS_WITH(stage.prepare(scene), Catch::Contains("empty"));
   scene.medial = one_sphere(1.0);
-  CHECK_THROWS_WITH(stage.prepare(scene), Catch::Contains("surface_samples"));
+  CHECK_NOTHROW(stage.prepare(scene));
   params.set("vertices", true);
   stage.configure(params);
-  CHECK_NOTHROW(stage.prepare(scene));
+  CHECK_NOTHROW(stage.check_params());
+  Scene nothing;
+  nothing.medial = one_sphere(1.0);
+  CHECK_THROWS_WITH(stage.prepare(nothing), Catch::Contains("neither a mesh nor samples") &&
+                                                !Catch::Contains("reconstruction:"));
+}
+
+TEST_CASE("evaluation stages: a fresh stage runs at the declared defaults, which are the algorithm's",
+          "[reconstruction][topology]") {
+  std::map<std::string, ParamSpec> specs;
+  for (const ParamSpec& p : stage_info<evaluation::ReconstructionStage>().params) specs[p.name] = p;
+  const evaluation::ReconstructionOptions defaults;
+  CHECK(std::get<long long>(specs.at("resolution").default_value) == defaults.resolution);
+  CHECK(std::get<double>(specs.at("step").default_value) == defaults.step);
+  CHECK(std::get<bool>(specs.at("vertices").default_value) == defaults.use_vertices);
+  CHECK(std::get<long long>(specs.at("surface_samples").default_value) == static_cast<long long>(defaults.uniform_samples));
+  CHECK(std::get<long long>(specs.at("max_envelope_samples").default_value) ==
+        static_cast<long long>(defaults.max_envelope_samples));
+  CHECK(std::get<bool>(specs.at("export_envelope").default_value) == false);
+  CHECK(specs.size() == 6);
+  CHECK(stage_info<evaluation::CountsStage>().params.empty());
+  const std::vector<ParamSpec> topology = stage_info<evaluation::TopologyStage>().params;
+  REQUIRE(topology.size() == 1);
+  CHECK(topology[0].name == "input");
+  CHECK(topology[0].default_text() == "true");
 }
 
 TEST_CASE("counts: a small hand-built complex", "[counts]") {
@@ -272,8 +314,8 @@ TEST_CASE("counts: a small hand-built complex", "[counts]") {
   mc.add_edge(4, 4);     // degenerate: ignored
   mc.add_face(4, 5, 5);  // degenerate triangle: the unique edge 4-5
   mc.add_edge(5, 6);     // unique; vertex 7 stays isolated
-  evaluation::Counts stage;
-  const Metrics m = run_stage(stage, evaluation::Counts::describe().params, Shape{}, mc);
+  evaluation::CountsStage stage;
+  const Metrics m = run_stage(stage, Shape{}, mc);
   CHECK(m.at("vertices") == 8);
   CHECK(m.at("faces") == 2);
   CHECK(m.at("unique_edges") == 3);
@@ -289,8 +331,8 @@ TEST_CASE("topology stage: a ring complex inside a torus", "[topology]") {
   MedialComplex ring;
   for (int i = 0; i < 12; ++i) ring.add_vertex(Vec3(std::cos(i * M_PI / 6), std::sin(i * M_PI / 6), 0), 0.3);
   for (Index i = 0; i < 12; ++i) ring.add_edge(i, (i + 1) % 12);
-  evaluation::Topology stage;
-  const Metrics m = run_stage(stage, evaluation::Topology::describe().params, shape, ring);
+  evaluation::TopologyStage stage;
+  const Metrics m = run_stage(stage, shape, ring);
   CHECK(m.at("components") == 1);
   CHECK(m.at("euler") == 0);
   CHECK(m.at("b0") == 1);
@@ -301,7 +343,8 @@ TEST_CASE("topology stage: a ring complex inside a torus", "[topology]") {
   CHECK(m.at("input_genus") == 1);
   CHECK(m.at("input_b1") == 2);
   CHECK(m.at("input_closed") == 1);
-  const Metrics without = run_stage(stage, evaluation::Topology::describe().params, shape, ring, {{"input", false}});
+  evaluation::TopologyStage without_input;
+  const Metrics without = run_stage(without_input, shape, ring, {{"input", false}});
   CHECK(without.count("input_genus") == 0);
 }
 

@@ -1,12 +1,10 @@
 #include "interior_voronoi.hpp"
 
-#include "ray_parity.hpp"
-
-#include <medax/services/delaunay.hpp>
 #include <medax/services/blocks.hpp>
+#include <medax/services/delaunay.hpp>
 #include <medax/services/delaunay_rings.hpp>
 #include <medax/services/inside.hpp>
-
+#include <medax/services/ray_parity.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -71,49 +69,21 @@ void faces_of_block(const std::vector<Node>& nodes, Index begin, Index end, Face
   }
 }
 
-}  // namespace
-
-MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
-                               const InteriorVoronoiOptions& options, InteriorVoronoiReport* report) {
-  InteriorVoronoiReport info;
-  auto t0 = Clock::now();
-
-  // 1. The Delaunay tetrahedralization, while the other core prepares the inside test.
-  std::optional<RayParityInside> ray_grid;
-  std::optional<services::InsideTest> side_of_mesh;
-  const auto prepare_inside = [&] {
-    if (options.inside == InsideMethod::RayGrid) ray_grid.emplace(mesh);
-    else side_of_mesh.emplace(mesh);
-  };
-  const DelaunayTetrahedralization dt =
-      services::delaunay_tetrahedralize_alongside(points, {options.parallel}, prepare_inside);
+/// 3. Compact: interior cells become vertices, in cell order (centre, radius, generators), and
+/// their records in `nodes`. Returns the number of interior cells.
+Index compact_cells(const DelaunayTetrahedralization& dt, const std::vector<char>& inside, bool parallel,
+                    std::vector<Node>& nodes, MedialComplex& medial) {
   const std::size_t n = dt.cells.size();
-  if (n >= kNone) throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
-  info.points = dt.vertex_point.size();
-  info.cells = n;
-  info.seconds_delaunay = seconds_since(t0);
-
-  // 2. Which circumcentres are strictly inside the mesh.
-  t0 = Clock::now();
-  const std::vector<char> inside = ray_grid ? ray_grid->inside(dt.circumcentres, options.parallel)
-                                            : side_of_mesh->inside(dt.circumcentres);
-  info.seconds_inside = seconds_since(t0);
-
-  // 3. Compact: interior cells become vertices, in cell order.
-  t0 = Clock::now();
   std::vector<Index> id(n, kNone);
   Index count = 0;
   for (std::size_t c = 0; c < n; ++c)
     if (inside[c]) id[c] = count++;
-  info.interior = count;
 
-  std::vector<Node> nodes(count);
-  MedialComplex medial;
+  nodes.resize(count);
   medial.centres.resize(count);
   medial.radii.resize(count);
   medial.generators.resize(count);
-  medial.generator_kind = options.generator_kind;
-  services::for_blocks(n, kBlock, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  services::for_blocks(n, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const Index i = id[c];
       if (i == kNone) continue;
@@ -130,42 +100,84 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
       medial.generators[i].assign(g.begin(), g.end());
     }
   });
+  return count;
+}
 
-  // 4. Voronoi edges: facets between two interior cells, each once (from its lower vertex).
-  if (options.connectivity != Connectivity::None) {
-    medial.edges.reserve(2 * static_cast<std::size_t>(count));
-    for (Index i = 0; i < count; ++i) {
-      std::array<Index, 4> ends = nodes[i].neighbour;
-      std::sort(ends.begin(), ends.end());  // kNone last
-      for (Index j : ends)
-        if (j > i && j != kNone) medial.edges.push_back({i, j});
-    }
+/// 4. Voronoi edges: facets between two interior cells, each once (from its lower vertex).
+void add_voronoi_edges(const std::vector<Node>& nodes, MedialComplex& medial) {
+  const Index count = static_cast<Index>(nodes.size());
+  medial.edges.reserve(2 * static_cast<std::size_t>(count));
+  for (Index i = 0; i < count; ++i) {
+    std::array<Index, 4> ends = nodes[i].neighbour;
+    std::sort(ends.begin(), ends.end());  // kNone last
+    for (Index j : ends)
+      if (j > i && j != kNone) medial.edges.push_back({i, j});
   }
+}
+
+/// 5. Voronoi faces, fan-triangulated; their diagonals join the edges (after the Voronoi
+/// edges, labelled kFanDiagonal). Returns the number of polygons.
+std::size_t add_voronoi_faces(const std::vector<Node>& nodes, bool parallel, MedialComplex& medial) {
+  const std::size_t count = nodes.size(), voronoi_edges = medial.edges.size();
+  std::vector<FaceBlock> blocks(services::block_count(count, kBlock));
+  services::for_blocks(count, kBlock, parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    faces_of_block(nodes, static_cast<Index>(begin), static_cast<Index>(end), blocks[b]);
+  });
+  std::size_t faces = 0, diagonals = 0;
+  for (const FaceBlock& b : blocks) faces += b.faces.size(), diagonals += b.diagonals.size();
+  medial.faces.reserve(faces);
+  medial.edges.reserve(medial.edges.size() + diagonals);
+  std::vector<int>& polygon = medial.add(kPolygon);
+  polygon.reserve(faces);
+  int polygons = 0;
+  for (const FaceBlock& b : blocks) {
+    medial.faces.insert(medial.faces.end(), b.faces.begin(), b.faces.end());
+    medial.edges.insert(medial.edges.end(), b.diagonals.begin(), b.diagonals.end());
+    for (int p : b.polygon) polygon.push_back(polygons + p);
+    polygons += b.polygons;
+  }
+  std::vector<int>& diagonal = medial.add(kFanDiagonal);
+  std::fill(diagonal.begin() + static_cast<std::ptrdiff_t>(voronoi_edges), diagonal.end(), 1);
+  return static_cast<std::size_t>(polygons);
+}
+
+}  // namespace
+
+MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
+                               const InteriorVoronoiOptions& options, InteriorVoronoiReport* report) {
+  InteriorVoronoiReport info;
+  auto t0 = Clock::now();
+
+  // 1. The Delaunay tetrahedralization, while the other core prepares the inside test.
+  std::optional<services::RayParityInside> ray_grid;
+  std::optional<services::InsideTest> side_of_mesh;
+  const auto prepare_inside = [&] {
+    if (options.inside == InsideMethod::RayGrid) ray_grid.emplace(mesh);
+    else side_of_mesh.emplace(mesh);
+  };
+  const DelaunayTetrahedralization dt =
+      services::delaunay_tetrahedralize_alongside(points, {options.parallel}, prepare_inside);
+  if (dt.cells.size() >= kNone)
+    throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
+  info.points = dt.vertex_point.size();
+  info.cells = dt.cells.size();
+  info.seconds_delaunay = seconds_since(t0);
+
+  // 2. Which circumcentres are strictly inside the mesh.
+  t0 = Clock::now();
+  const std::vector<char> inside = ray_grid ? ray_grid->inside(dt.circumcentres, options.parallel)
+                                            : side_of_mesh->inside(dt.circumcentres);
+  info.seconds_inside = seconds_since(t0);
+
+  // 3.-5. The complex.
+  t0 = Clock::now();
+  std::vector<Node> nodes;
+  MedialComplex medial;
+  medial.generator_kind = options.generator_kind;
+  info.interior = compact_cells(dt, inside, options.parallel, nodes, medial);
+  if (options.connectivity != Connectivity::None) add_voronoi_edges(nodes, medial);
   info.voronoi_edges = medial.edges.size();
-
-  // 5. Voronoi faces, fan-triangulated; their diagonals join the edges.
-  if (options.connectivity == Connectivity::Faces) {
-    std::vector<FaceBlock> blocks(services::block_count(count, kBlock));
-    services::for_blocks(count, kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
-      faces_of_block(nodes, static_cast<Index>(begin), static_cast<Index>(end), blocks[b]);
-    });
-    std::size_t faces = 0, diagonals = 0;
-    for (const FaceBlock& b : blocks) faces += b.faces.size(), diagonals += b.diagonals.size();
-    medial.faces.reserve(faces);
-    medial.edges.reserve(medial.edges.size() + diagonals);
-    auto& polygon = medial.face_props.labels.add("polygon", 0);
-    polygon.reserve(faces);
-    int polygons = 0;
-    for (const FaceBlock& b : blocks) {
-      medial.faces.insert(medial.faces.end(), b.faces.begin(), b.faces.end());
-      medial.edges.insert(medial.edges.end(), b.diagonals.begin(), b.diagonals.end());
-      for (int p : b.polygon) polygon.push_back(polygons + p);
-      polygons += b.polygons;
-    }
-    info.voronoi_faces = static_cast<std::size_t>(polygons);
-    auto& diagonal = medial.edge_props.labels.add("fan_diagonal", medial.edges.size(), 0);
-    std::fill(diagonal.begin() + static_cast<std::ptrdiff_t>(info.voronoi_edges), diagonal.end(), 1);
-  }
+  if (options.connectivity == Connectivity::Faces) info.voronoi_faces = add_voronoi_faces(nodes, options.parallel, medial);
   info.seconds_complex = seconds_since(t0);
   if (report) *report = info;
   return medial;

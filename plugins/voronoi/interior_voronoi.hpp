@@ -12,9 +12,15 @@ namespace medax::voronoi {
 
 /// How circumcentres are classified against the mesh. Both are exact and give the same answer.
 enum class InsideMethod {
-  RayGrid,     ///< parity of +x rays over a (y, z) grid of the triangles (fast; services/ray_parity.hpp)
+  RayGrid,     ///< parity of +x rays over a (y, z) grid of the triangles (fast; medax::services::RayParityInside)
   SideOfMesh,  ///< CGAL::Side_of_triangle_mesh (medax::services::InsideTest), the reference
 };
+
+/// Face label: the number of the Voronoi polygon each triangle belongs to (consecutive in
+/// output order).
+inline const Property<int> kPolygon{Element::Face, "polygon"};
+/// Edge label: 1 for a fan diagonal, 0 for a Voronoi edge (the Voronoi edges come first).
+inline const Property<int> kFanDiagonal{Element::Edge, "fan_diagonal"};
 
 enum class Connectivity {
   Faces,  ///< Voronoi edges and fan-triangulated Voronoi faces

@@ -84,7 +84,8 @@ TEST_CASE("voronoi stage: extracts from vertices or samples, and refuses what it
 
   Shape open = shape;
   open.mesh.faces.pop_back();
-  CHECK_THROWS_WITH(vertices->extract(open, ctx), Catch::Contains("voronoi:") && Catch::Contains("not closed") &&
+  // The stage does not name itself (the runner prefixes its id).
+  CHECK_THROWS_WITH(vertices->extract(open, ctx), !Catch::Contains("voronoi:") && Catch::Contains("not closed") &&
                                                       Catch::Contains("repair"));
 }
 

@@ -1,10 +1,10 @@
-// RayParityInside, the voronoi package's exact batch inside test: the same answers as CGAL's
-// Side_of_triangle_mesh on every good shared mesh, and the analytic answer on a box queried on
-// a lattice that sends rays through its edges and vertices and puts points on its faces.
-#include "ray_parity.hpp"
-
+// services::RayParityInside, the exact batch inside test of the voronoi and dey_zhao
+// extractions: the same answers as CGAL's Side_of_triangle_mesh on every good shared mesh, and
+// the analytic answer on a box queried on a lattice that sends rays through its edges and
+// vertices and puts points on its faces.
 #include <medax/io.hpp>
 #include <medax/services/inside.hpp>
+#include <medax/services/ray_parity.hpp>
 #include <medax/testing/shapes.hpp>
 
 #include <test_paths.hpp>
@@ -16,13 +16,13 @@
 #include <random>
 
 using namespace medax;
-using voronoi::RayParityInside;
+using services::RayParityInside;
 
 namespace {
 
 }  // namespace
 
-TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good shared mesh", "[voronoi][inside]") {
+TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good shared mesh", "[geometry][inside]") {
   const auto meshes = test::good_meshes();
   if (meshes.empty()) {
     WARN("no shared meshes in " << test::shared_meshes_dir() << ": skipped");
@@ -66,7 +66,7 @@ TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good share
 }
 
 TEST_CASE("RayParityInside on a box lattice: rays through edges and vertices, points on faces",
-          "[voronoi][inside]") {
+          "[geometry][inside]") {
   const Vec3 a(1.0, 0.5, 0.25);
   const SurfaceMesh box = testing::make_box(a.x(), a.y(), a.z(), 4);
   const RayParityInside fast(box);
@@ -92,7 +92,7 @@ TEST_CASE("RayParityInside on a box lattice: rays through edges and vertices, po
 }
 
 TEST_CASE("RayParityInside ignores face orientation and accepts seams of coincident vertices",
-          "[voronoi][inside]") {
+          "[geometry][inside]") {
   // A cube whose six faces have their own vertices (closed by positions, not by indices),
   // half of its faces turned inside out.
   SurfaceMesh cube;
@@ -114,7 +114,7 @@ TEST_CASE("RayParityInside ignores face orientation and accepts seams of coincid
   CHECK_FALSE(test.inside(Vec3(0, 0, -2)));
 }
 
-TEST_CASE("RayParityInside refuses an open mesh", "[voronoi][inside]") {
+TEST_CASE("RayParityInside refuses an open mesh", "[geometry][inside]") {
   SurfaceMesh sphere = testing::make_sphere(1.0, 2);
   sphere.faces.pop_back();
   CHECK_THROWS_AS(RayParityInside(sphere), std::invalid_argument);

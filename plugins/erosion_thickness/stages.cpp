@@ -82,21 +82,21 @@ void ErosionThicknessStage::declare(ParamBinder& p) {
         "Write the burn forest (every primary arc) to `<id>_burn_forest.obj` in the run folder");
 }
 
-void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, Context& ctx) {
-  if (medial.faces.empty()) ctx.warn("the complex has no triangles: every vertex is its own boundary (ET = 0)");
-  const double L = reference_length(shape, medial, options_.relative_to);
-  const double omega = options_.omega * L;
-  const std::shared_ptr<const EtRun> run = run_erosion_thickness(medial, omega, options_.min_samples, canceller(ctx));
-  const BurnGraph& g = run->graph;
+namespace {
+
+void log_burn(const EtRun& run, double omega, double L, Context& ctx) {
+  const BurnGraph& g = run.graph;
   ctx.info(fmt::format("graph: omega {:g} (reference length {:g}), {} triangles, {} nodes ({} samples), {} sectors, "
                        "{} arcs; built in {:.3f} s",
-                       omega, L, run->complex.num_triangles(), g.num_nodes(), g.num_nodes() - g.num_vertices(),
-                       g.num_sectors(), g.count_arcs(), run->seconds_graph));
-  const std::size_t unburned = static_cast<std::size_t>(
-      std::count_if(run->burn.bt.begin(), run->burn.bt.end(), [](double b) { return std::isinf(b); }));
+                       omega, L, run.complex.num_triangles(), g.num_nodes(), g.num_nodes() - g.num_vertices(),
+                       g.num_sectors(), g.count_arcs(), run.seconds_graph));
+  const auto unburned = std::count_if(run.burn.bt.begin(), run.burn.bt.end(), [](double b) { return std::isinf(b); });
   ctx.info(fmt::format("burn: {} pops, {} relaxations in {:.3f} s; {} nodes never burn (closed surfaces)",
-                       run->burn.pops, run->burn.relaxations, run->seconds_burn, unburned));
-  store_erosion_thickness(*run, medial);
+                       run.burn.pops, run.burn.relaxations, run.seconds_burn, unburned));
+}
+
+/// The ET range, and a warning when some vertices have ET < 0.
+void report_et(const EtRun& run, const MedialComplex& medial, Context& ctx) {
   const auto& et = medial.get(kEt);
   std::size_t negative = 0, infinite = 0;
   double lo = kInf, hi = -kInf;
@@ -110,7 +110,7 @@ void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, C
     hi = std::max(hi, v);
   }
   std::size_t steep = 0;
-  for (const Segment& e : run->complex.edges)
+  for (const Segment& e : run.complex.edges)
     steep += std::abs(medial.radii[e[0]] - medial.radii[e[1]]) > (medial.centres[e[0]] - medial.centres[e[1]]).norm();
   ctx.info(fmt::format("et in [{:g}, {:g}]; {} vertices with et = inf; {} edges where |dR| > length", lo, hi, infinite,
                        steep));
@@ -119,15 +119,31 @@ void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, C
                          "faster than distance along some arcs ({} edges, and arcs across skinny triangles; the "
                          "paper's g > 1), so fire reaches them before their own ignition time",
                          negative, et.size(), 100.0 * negative / std::max<std::size_t>(1, et.size()), lo, steep));
-  if (write_forest_)
-    ctx.write_output(ctx.stage_id() + "_burn_forest.obj", [&run](std::ostream& out) {
-      const BurnGraph& g = run->graph;
-      out << "# medax erosion_thickness: burn forest (one line per primary arc)\n";
-      for (const Vec3& p : g.pos) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-      for (Index n = 0; n < g.num_nodes(); ++n)
-        for (Index s = g.sector_begin[n]; s < g.sector_begin[n + 1]; ++s)
-          if (run->burn.prime_node[s] != kNone) out << "l " << run->burn.prime_node[s] + 1 << ' ' << n + 1 << '\n';
-    });
+}
+
+/// `<id>_burn_forest.obj`: the graph's nodes and one line per primary arc.
+void write_burn_forest(const std::shared_ptr<const EtRun>& run, Context& ctx) {
+  ctx.write_output(ctx.stage_id() + "_burn_forest.obj", [run](std::ostream& out) {
+    const BurnGraph& g = run->graph;
+    out << "# medax erosion_thickness: burn forest (one line per primary arc)\n";
+    for (const Vec3& p : g.pos) out << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    for (Index n = 0; n < g.num_nodes(); ++n)
+      for (Index s = g.sector_begin[n]; s < g.sector_begin[n + 1]; ++s)
+        if (run->burn.prime_node[s] != kNone) out << "l " << run->burn.prime_node[s] + 1 << ' ' << n + 1 << '\n';
+  });
+}
+
+}  // namespace
+
+void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, Context& ctx) {
+  if (medial.faces.empty()) ctx.warn("the complex has no triangles: every vertex is its own boundary (ET = 0)");
+  const double L = reference_length(shape, medial, options_.relative_to);
+  const double omega = options_.omega * L;
+  const std::shared_ptr<const EtRun> run = run_erosion_thickness(medial, omega, options_.min_samples, canceller(ctx));
+  log_burn(*run, omega, L, ctx);
+  store_erosion_thickness(*run, medial);
+  report_et(*run, medial, ctx);
+  if (write_forest_) write_burn_forest(run, ctx);
   ctx.publish(kBurnData, SharedBurn{run, options_, L, fingerprint(medial)});
 }
 

@@ -235,6 +235,64 @@ void remove_self_intersections(CgalMesh& mesh, RepairResult& result) {
   result.failures.push_back("could not remove the self-intersections");
 }
 
+/// 1. The soup: merge duplicate points, drop faces with repeated corners, duplicate faces and
+///    unreferenced points. False when no face is left.
+bool clean_soup(const SurfaceMesh& input, std::vector<Point>& points, std::vector<Polygon>& polygons,
+                RepairResult& result) {
+  points.reserve(input.vertices.size());
+  for (const Vec3& v : input.vertices) points.push_back(detail::to_point(v));
+  polygons.reserve(input.faces.size());
+  for (const Tri& f : input.faces) polygons.push_back({f[0], f[1], f[2]});
+  const std::size_t merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  if (merged > 0) result.actions.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
+  const std::size_t faces_before = polygons.size(), points_merged = points.size();
+  PMP::repair_polygon_soup(points, polygons);
+  if (polygons.size() < faces_before)
+    result.actions.push_back("removed " + plural(faces_before - polygons.size(), "face", "faces") +
+                             " with repeated corners or duplicating another face");
+  if (points.size() < points_merged)
+    result.actions.push_back("dropped " +
+                             plural(points_merged - points.size(), "unreferenced vertex", "unreferenced vertices"));
+  if (polygons.empty()) result.failures.push_back("no face is left after removing the degenerate ones");
+  return !polygons.empty();
+}
+
+/// 2. Consistent orientation; points at non-manifold edges and vertices are duplicated.
+void orient_soup(std::vector<Point>& points, std::vector<Polygon>& polygons, RepairResult& result) {
+  const std::size_t points_before = points.size();
+  PMP::orient_polygon_soup(points, polygons);
+  if (points.size() > points_before)
+    result.actions.push_back("split " + plural(points.size() - points_before, "vertex", "vertices") +
+                             " at non-manifold edges or vertices (CGAL orient_polygon_soup)");
+  if (result.before.inconsistent_edges > 0)
+    result.actions.push_back("oriented the faces consistently (CGAL orient_polygon_soup)");
+}
+
+/// 3. Collinear (zero-area) faces: removed by edge collapses and flips, which keep the surface
+///    closed where simply deleting them would open it.
+void remove_collinear_faces(CgalMesh& mesh, RepairResult& result) {
+  std::size_t collinear = 0;
+  for (face_descriptor f : mesh.faces())
+    if (PMP::is_degenerate_triangle_face(f, mesh)) ++collinear;
+  if (collinear == 0) return;
+  const bool all = PMP::remove_degenerate_faces(mesh);
+  mesh.collect_garbage();
+  result.actions.push_back(fmt::format("removed {} by edge collapse{}",
+                                       plural(collinear, "collinear (zero-area) face", "collinear (zero-area) faces"),
+                                       all ? "" : " (some could not be removed)"));
+  if (!all) result.failures.push_back("CGAL remove_degenerate_faces could not remove every zero-area face");
+}
+
+/// 4. Opt-in repairs, and the outward orientation.
+void final_repairs(CgalMesh& mesh, const RepairOptions& options, RepairResult& result) {
+  if (options.fill_holes && !CGAL::is_closed(mesh)) fill_holes(mesh, options, result);
+  orient_outward(mesh, result);
+  if (options.remove_self_intersections) {
+    remove_self_intersections(mesh, result);
+    orient_outward(mesh, result);
+  }
+}
+
 }  // namespace
 
 RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options) {
@@ -249,68 +307,23 @@ RepairResult repair_mesh(const SurfaceMesh& input, const RepairOptions& options)
   }
 
   try {
-    // 1. The soup: merge duplicate points, drop faces with repeated corners, duplicate faces
-    //    and unreferenced points.
     std::vector<Point> points;
     std::vector<Polygon> polygons;
-    points.reserve(input.vertices.size());
-    for (const Vec3& v : input.vertices) points.push_back(detail::to_point(v));
-    polygons.reserve(input.faces.size());
-    for (const Tri& f : input.faces) polygons.push_back({f[0], f[1], f[2]});
-    const std::size_t merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
-    if (merged > 0) result.actions.push_back("merged " + plural(merged, "duplicate vertex", "duplicate vertices"));
-    const std::size_t faces_before = polygons.size(), points_merged = points.size();
-    PMP::repair_polygon_soup(points, polygons);
-    if (polygons.size() < faces_before)
-      result.actions.push_back("removed " + plural(faces_before - polygons.size(), "face", "faces") +
-                                   " with repeated corners or duplicating another face");
-    if (points.size() < points_merged)
-      result.actions.push_back("dropped " + plural(points_merged - points.size(), "unreferenced vertex", "unreferenced vertices"));
-    if (polygons.empty()) {
-      result.failures.push_back("no face is left after removing the degenerate ones");
+    if (!clean_soup(input, points, polygons, result)) {
       result.mesh = {};
       result.after = check_mesh(result.mesh, check_options);
       result.changed = true;
       return result;
     }
-
-    // 2. Consistent orientation; points at non-manifold edges and vertices are duplicated.
-    const std::size_t points_before = points.size();
-    PMP::orient_polygon_soup(points, polygons);
-    if (points.size() > points_before)
-      result.actions.push_back("split " + plural(points.size() - points_before, "vertex", "vertices") +
-                                   " at non-manifold edges or vertices (CGAL orient_polygon_soup)");
-    if (result.before.inconsistent_edges > 0)
-      result.actions.push_back("oriented the faces consistently (CGAL orient_polygon_soup)");
-
+    orient_soup(points, polygons, result);
     if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
       result.failures.push_back("the faces do not form a valid polygon mesh even after orient_polygon_soup");
       result.mesh = soup_to_surface(points, polygons);
     } else {
       CgalMesh mesh;
       PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-
-      // 3. Collinear (zero-area) faces: removed by edge collapses and flips, which keep the
-      //    surface closed where simply deleting them would open it.
-      std::size_t collinear = 0;
-      for (face_descriptor f : mesh.faces())
-        if (PMP::is_degenerate_triangle_face(f, mesh)) ++collinear;
-      if (collinear > 0) {
-        const bool all = PMP::remove_degenerate_faces(mesh);
-        mesh.collect_garbage();
-        result.actions.push_back(fmt::format("removed {} by edge collapse{}",
-                                             plural(collinear, "collinear (zero-area) face", "collinear (zero-area) faces"),
-                                             all ? "" : " (some could not be removed)"));
-        if (!all) result.failures.push_back("CGAL remove_degenerate_faces could not remove every zero-area face");
-      }
-
-      // 4. Opt-in repairs.
-      if (options.fill_holes && !CGAL::is_closed(mesh)) fill_holes(mesh, options, result);
-      orient_outward(mesh, result);
-      if (options.remove_self_intersections) {
-        remove_self_intersections(mesh, result);
-        orient_outward(mesh, result);
-      }
+      remove_collinear_faces(mesh, result);
+      final_repairs(mesh, options, result);
       result.mesh = to_surface(mesh);
     }
   } catch (const std::exception& e) {

@@ -114,13 +114,11 @@ std::size_t odd_edges(const std::vector<Tri>& faces, std::size_t num_vertices, c
   return odd;
 }
 
-}  // namespace
-
-RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_triangle) {
+/// Closedness: every edge must bound an even number of faces, or the crossing parity means
+/// nothing. Checked on indices, then, if that fails, on positions (a mesh may be closed with
+/// seams of coincident vertices). Throws std::invalid_argument when it is not closed.
+void check_closed(const SurfaceMesh& mesh) {
   const auto& V = mesh.vertices;
-  // Closedness: every edge must bound an even number of faces, or the crossing parity means
-  // nothing. Checked on indices, then, if that fails, on positions (a mesh may be closed with
-  // seams of coincident vertices).
   for (const Tri& f : mesh.faces)
     for (Index v : f)
       if (v >= V.size()) throw std::invalid_argument("inside test: a face refers to a vertex that does not exist");
@@ -141,12 +139,28 @@ RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_tri
     throw std::invalid_argument(
         "inside test: the surface mesh is not closed (" + std::to_string(odd) +
         " edges bound an odd number of faces), so inside and outside are undefined; run the `repair` stage first");
+}
 
+}  // namespace
+
+RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_triangle) {
+  check_closed(mesh);
+  std::vector<Entry> boxes;
+  std::vector<float> box_xmin;
+  set_triangles(mesh, boxes, box_xmin);
+  set_grid(mesh, columns_per_triangle);
+  std::vector<std::array<int, 4>> ranges = column_ranges(boxes);
+  renumber_by_column(boxes, box_xmin, ranges);
+  fill_columns(boxes, box_xmin, ranges);
+}
+
+void RayParityInside::set_triangles(const SurfaceMesh& mesh, std::vector<Entry>& boxes, std::vector<float>& box_xmin) {
   // Triangles with the exact sign of their (y, z) projection, and their boxes.
+  const auto& V = mesh.vertices;
   const std::size_t nf = mesh.faces.size();
   triangles_.resize(nf);
-  std::vector<Entry> boxes(nf);     // x = xmax
-  std::vector<float> box_xmin(nf);
+  boxes.resize(nf);  // x = xmax
+  box_xmin.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t f = r.begin(); f != r.end(); ++f) {
       Triangle& t = triangles_[f];
@@ -161,18 +175,21 @@ RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_tri
       box_xmin[f] = down(x_lo);
     }
   });
+}
+
+void RayParityInside::set_grid(const SurfaceMesh& mesh, double columns_per_triangle) {
   double ymin = INFINITY, ymax = -INFINITY, zmin = INFINITY, zmax = -INFINITY;
   xmin_ = INFINITY, xmax_ = -INFINITY;
   for (const Tri& f : mesh.faces)
     for (Index v : f) {
-      const Vec3& p = V[v];
+      const Vec3& p = mesh.vertices[v];
       ymin = std::min(ymin, p.y()), ymax = std::max(ymax, p.y());
       zmin = std::min(zmin, p.z()), zmax = std::max(zmax, p.z());
       xmin_ = std::min(xmin_, p.x()), xmax_ = std::max(xmax_, p.x());
     }
   // Square columns in (y, z), `columns_per_triangle` per triangle.
   const double ly = ymax - ymin, lz = zmax - zmin;
-  const double cells = std::max(1.0, columns_per_triangle * static_cast<double>(nf));
+  const double cells = std::max(1.0, columns_per_triangle * static_cast<double>(mesh.faces.size()));
   const double h = std::sqrt(std::max(ly * lz, 1e-300) / cells);
   ny_ = std::clamp(static_cast<int>(std::ceil(ly / h)), 1, 1 << 12);
   nz_ = std::clamp(static_cast<int>(std::ceil(lz / h)), 1, 1 << 12);
@@ -180,43 +197,53 @@ RayParityInside::RayParityInside(const SurfaceMesh& mesh, double columns_per_tri
   y1_ = ymax, z1_ = zmax;
   inv_hy_ = ly > 0 ? ny_ / ly : 0;
   inv_hz_ = lz > 0 ? nz_ / lz : 0;
+}
+
+std::vector<std::array<int, 4>> RayParityInside::column_ranges(const std::vector<Entry>& boxes) const {
   // Column of a coordinate: monotone in the coordinate, so a closed box [lo, hi] covers every
   // column a point inside it can fall in (float box ends are outside the double ones).
   const auto iy = [&](double y) { return std::clamp(static_cast<int>((y - y0_) * inv_hy_), 0, ny_ - 1); };
   const auto iz = [&](double z) { return std::clamp(static_cast<int>((z - z0_) * inv_hz_), 0, nz_ - 1); };
-
-  const std::size_t columns = static_cast<std::size_t>(ny_) * nz_;
-  offsets_.assign(columns + 1, 0);
-  std::vector<std::array<int, 4>> ranges(nf);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+  std::vector<std::array<int, 4>> ranges(boxes.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t f = r.begin(); f != r.end(); ++f)
       ranges[f] = {iy(boxes[f].ymin), iy(boxes[f].ymax), iz(boxes[f].zmin), iz(boxes[f].zmax)};
   });
+  return ranges;
+}
+
+void RayParityInside::renumber_by_column(std::vector<Entry>& boxes, std::vector<float>& box_xmin,
+                                         std::vector<std::array<int, 4>>& ranges) {
   // Renumber the triangles by the first column they cover (counting sort), so that queries,
   // which run column after column, read the triangles in memory order.
-  {
-    std::vector<std::uint32_t> start(columns + 1, 0);
-    for (std::size_t f = 0; f < nf; ++f) ++start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2] + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<Index> order(nf);
-    for (std::size_t f = 0; f < nf; ++f)
-      order[start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2]]++] = static_cast<Index>(f);
-    std::vector<Triangle> triangles(nf);
-    std::vector<Entry> sorted_boxes(nf);
-    std::vector<float> sorted_xmin(nf);
-    std::vector<std::array<int, 4>> sorted_ranges(nf);
-    for (std::size_t k = 0; k < nf; ++k) {
-      triangles[k] = triangles_[order[k]];
-      sorted_boxes[k] = boxes[order[k]];
-      sorted_boxes[k].triangle = static_cast<Index>(k);
-      sorted_xmin[k] = box_xmin[order[k]];
-      sorted_ranges[k] = ranges[order[k]];
-    }
-    triangles_.swap(triangles);
-    boxes.swap(sorted_boxes);
-    box_xmin.swap(sorted_xmin);
-    ranges.swap(sorted_ranges);
+  const std::size_t nf = boxes.size(), columns = static_cast<std::size_t>(ny_) * nz_;
+  std::vector<std::uint32_t> start(columns + 1, 0);
+  for (std::size_t f = 0; f < nf; ++f) ++start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2] + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Index> order(nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    order[start[static_cast<std::size_t>(ranges[f][0]) * nz_ + ranges[f][2]]++] = static_cast<Index>(f);
+  std::vector<Triangle> triangles(nf);
+  std::vector<Entry> sorted_boxes(nf);
+  std::vector<float> sorted_xmin(nf);
+  std::vector<std::array<int, 4>> sorted_ranges(nf);
+  for (std::size_t k = 0; k < nf; ++k) {
+    triangles[k] = triangles_[order[k]];
+    sorted_boxes[k] = boxes[order[k]];
+    sorted_boxes[k].triangle = static_cast<Index>(k);
+    sorted_xmin[k] = box_xmin[order[k]];
+    sorted_ranges[k] = ranges[order[k]];
   }
+  triangles_.swap(triangles);
+  boxes.swap(sorted_boxes);
+  box_xmin.swap(sorted_xmin);
+  ranges.swap(sorted_ranges);
+}
+
+void RayParityInside::fill_columns(const std::vector<Entry>& boxes, const std::vector<float>& box_xmin,
+                                   const std::vector<std::array<int, 4>>& ranges) {
+  const std::size_t nf = boxes.size(), columns = static_cast<std::size_t>(ny_) * nz_;
+  offsets_.assign(columns + 1, 0);
   for (std::size_t f = 0; f < nf; ++f)
     for (int y = ranges[f][0]; y <= ranges[f][1]; ++y)
       for (int z = ranges[f][2]; z <= ranges[f][3]; ++z) ++offsets_[static_cast<std::size_t>(y) * nz_ + z + 1];

@@ -23,24 +23,33 @@ void add_mod2(std::vector<Index>& column, const std::vector<Index>& other, std::
   column.swap(scratch);
 }
 
-/// rank of ∂2 over Z/2; `face_edges` holds the (sorted) edge indices of each triangle.
-std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<Index, 3>>& face_edges) {
-  const std::size_t nf = face_edges.size();
-  // Edge -> incident triangles (CSR).
-  std::vector<std::size_t> start(num_edges + 1, 0);
+/// Edge -> incident triangles, as compressed rows: the triangles of edge e are
+/// incident[start[e], start[e + 1]).
+struct Incidence {
+  std::vector<std::size_t> start;
+  std::vector<Index> incident;
+};
+
+Incidence edge_triangles(std::size_t num_edges, const std::vector<std::array<Index, 3>>& face_edges) {
+  Incidence in;
+  in.start.assign(num_edges + 1, 0);
   for (const auto& fe : face_edges)
-    for (Index e : fe) ++start[e + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<Index> incident(start.back());
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f)
-      for (Index e : face_edges[f]) incident[fill[e]++] = static_cast<Index>(f);
-  }
-  // Free-face collapses: a triangle owning an edge alone is independent of all the others.
+    for (Index e : fe) ++in.start[e + 1];
+  std::partial_sum(in.start.begin(), in.start.end(), in.start.begin());
+  in.incident.resize(in.start.back());
+  std::vector<std::size_t> fill(in.start.begin(), in.start.end() - 1);
+  for (std::size_t f = 0; f < face_edges.size(); ++f)
+    for (Index e : face_edges[f]) in.incident[fill[e]++] = static_cast<Index>(f);
+  return in;
+}
+
+/// Free-face collapses: a triangle owning an edge alone is independent of all the others. Marks
+/// the collapsed triangles dead in `alive` and returns their number (their share of the rank).
+std::size_t collapse_free_faces(const std::vector<std::array<Index, 3>>& face_edges, const Incidence& in,
+                                std::vector<char>& alive) {
+  const std::size_t num_edges = in.start.size() - 1;
   std::vector<Index> count(num_edges);
-  for (std::size_t e = 0; e < num_edges; ++e) count[e] = static_cast<Index>(start[e + 1] - start[e]);
-  std::vector<char> alive(nf, 1);
+  for (std::size_t e = 0; e < num_edges; ++e) count[e] = static_cast<Index>(in.start[e + 1] - in.start[e]);
   std::vector<Index> queue;
   for (std::size_t e = 0; e < num_edges; ++e)
     if (count[e] == 1) queue.push_back(static_cast<Index>(e));
@@ -50,9 +59,9 @@ std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<In
     queue.pop_back();
     if (count[e] != 1) continue;
     Index f = 0;
-    for (std::size_t k = start[e]; k < start[e + 1]; ++k)
-      if (alive[incident[k]]) {
-        f = incident[k];
+    for (std::size_t k = in.start[e]; k < in.start[e + 1]; ++k)
+      if (alive[in.incident[k]]) {
+        f = in.incident[k];
         break;
       }
     alive[f] = 0;
@@ -60,38 +69,46 @@ std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<In
     for (Index other : face_edges[f])
       if (--count[other] == 1) queue.push_back(other);
   }
-  // Column reduction of what is left (the triangles of possible 2-cycles: closed surfaces,
-  // books of pages...). Triangles are taken in breadth-first order across shared edges and
-  // edges ranked by first appearance in that order, with pivot = highest rank: a triangle that
-  // brings a new edge gets it as its pivot at once, and only the triangles closing a cycle
-  // need reducing. A closed surface then costs about F·√F, not F².
+  return rank;
+}
+
+/// The live triangles in breadth-first order across shared edges.
+std::vector<Index> breadth_first(const std::vector<std::array<Index, 3>>& face_edges, const Incidence& in,
+                                 const std::vector<char>& alive) {
+  const std::size_t nf = face_edges.size();
   std::vector<Index> order;
-  {
-    std::vector<char> seen(nf, 0);
-    for (std::size_t seed = 0; seed < nf; ++seed) {
-      if (!alive[seed] || seen[seed]) continue;
-      seen[seed] = 1;
-      std::size_t head = order.size();
-      order.push_back(static_cast<Index>(seed));
-      while (head < order.size()) {
-        const Index f = order[head++];
-        for (Index e : face_edges[f])
-          for (std::size_t k = start[e]; k < start[e + 1]; ++k) {
-            const Index g = incident[k];
-            if (alive[g] && !seen[g]) {
-              seen[g] = 1;
-              order.push_back(g);
-            }
+  std::vector<char> seen(nf, 0);
+  for (std::size_t seed = 0; seed < nf; ++seed) {
+    if (!alive[seed] || seen[seed]) continue;
+    seen[seed] = 1;
+    std::size_t head = order.size();
+    order.push_back(static_cast<Index>(seed));
+    while (head < order.size()) {
+      const Index f = order[head++];
+      for (Index e : face_edges[f])
+        for (std::size_t k = in.start[e]; k < in.start[e + 1]; ++k) {
+          const Index g = in.incident[k];
+          if (alive[g] && !seen[g]) {
+            seen[g] = 1;
+            order.push_back(g);
           }
-      }
+        }
     }
   }
+  return order;
+}
+
+/// Rank over Z/2 of the boundary columns of the triangles `order`, reduced in that order with
+/// edges ranked by first appearance and pivot = highest rank.
+std::size_t reduced_rank(std::size_t num_edges, const std::vector<std::array<Index, 3>>& face_edges,
+                         const std::vector<Index>& order) {
   constexpr Index kUnranked = Index(-1);
   std::vector<Index> edge_rank(num_edges, kUnranked);
   Index next_rank = 0;
   std::vector<std::int64_t> owner;
   std::vector<std::vector<Index>> reduced;
   std::vector<Index> column, scratch;
+  std::size_t rank = 0;
   for (Index f : order) {
     column.clear();
     for (Index e : face_edges[f]) {
@@ -110,6 +127,19 @@ std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<In
     ++rank;
   }
   return rank;
+}
+
+/// rank of ∂2 over Z/2; `face_edges` holds the (sorted) edge indices of each triangle.
+/// Free faces are collapsed first; the column reduction of what is left (the triangles of
+/// possible 2-cycles: closed surfaces, books of pages...) takes the triangles in breadth-first
+/// order across shared edges and ranks edges by first appearance in that order, with pivot =
+/// highest rank: a triangle that brings a new edge gets it as its pivot at once, and only the
+/// triangles closing a cycle need reducing. A closed surface then costs about F·√F, not F².
+std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<Index, 3>>& face_edges) {
+  const Incidence in = edge_triangles(num_edges, face_edges);
+  std::vector<char> alive(face_edges.size(), 1);
+  const std::size_t collapsed = collapse_free_faces(face_edges, in, alive);
+  return collapsed + reduced_rank(num_edges, face_edges, breadth_first(face_edges, in, alive));
 }
 
 }  // namespace

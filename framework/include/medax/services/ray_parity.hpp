@@ -9,6 +9,7 @@
 // extractions; moved here from plugins/voronoi so both share one copy.
 #include <medax/surface.hpp>
 
+#include <array>
 #include <vector>
 
 namespace medax::services {
@@ -43,6 +44,16 @@ class RayParityInside {
   struct ColumnX {
     float lo, hi, extent;
   };
+
+  // The constructor's steps: the triangles and their boxes, the (y, z) grid, the columns each
+  // box covers, the triangles renumbered by their first column, the columns' entries.
+  void set_triangles(const SurfaceMesh& mesh, std::vector<Entry>& boxes, std::vector<float>& box_xmin);
+  void set_grid(const SurfaceMesh& mesh, double columns_per_triangle);
+  std::vector<std::array<int, 4>> column_ranges(const std::vector<Entry>& boxes) const;
+  void renumber_by_column(std::vector<Entry>& boxes, std::vector<float>& box_xmin,
+                          std::vector<std::array<int, 4>>& ranges);
+  void fill_columns(const std::vector<Entry>& boxes, const std::vector<float>& box_xmin,
+                    const std::vector<std::array<int, 4>>& ranges);
 
   static constexpr std::size_t kNoColumn = ~std::size_t{0};
   /// The grid column of q, or kNoColumn when q is outside the mesh's bounding box.

@@ -1,6 +1,6 @@
 #pragma once
 // Internal: a count with its noun, for the mesh checks' and repairs' messages.
-#include "services_fmt.hpp"
+#include <fmt/format.h>
 
 #include <cstddef>
 #include <string>

@@ -1,6 +1,6 @@
 #include <medax/services/topology.hpp>
 
-#include "services_fmt.hpp"
+#include <fmt/format.h>
 
 #include <medax/union_find.hpp>
 

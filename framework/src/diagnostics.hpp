@@ -24,6 +24,10 @@ class Diagnostics {
   void mark_overridden(const YAML::Node& node, std::string where) { overridden_.emplace_back(node, std::move(where)); }
   /// Reports every key of `map` not in `known`, with a "did you mean".
   void unknown_keys(const YAML::Node& map, const std::vector<std::string>& known, const char* what);
+  /// Reports every key that appears twice in one map, anywhere under `root`, at its second
+  /// occurrence (yaml-cpp keeps both entries but lookups see only the first). Call it on the
+  /// document as read, before any node is added or changed.
+  void duplicate_keys(const YAML::Node& root);
 
   bool ok() const { return diagnostics_.empty(); }
   std::vector<Diagnostic> take() { return std::move(diagnostics_); }

@@ -323,6 +323,7 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
   if (!root.IsMap())
     throw PipelineError({Diagnostic{file.string(), 1, 1, "a pipeline is a YAML map with `input:` and `stages:`"}});
 
+  check.duplicate_keys(root);  // before the overrides add nodes
   apply_overrides(root, overrides, check);
   check.unknown_keys(root, kTopKeys, "pipeline");
 

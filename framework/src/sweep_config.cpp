@@ -144,6 +144,7 @@ SweepConfig load_sweep(const fs::path& pipeline) {
   } catch (const YAML::Exception& e) {
     throw PipelineError({Diagnostic{pipeline.string(), e.mark.line + 1, e.mark.column + 1, "not valid YAML: " + e.msg}});
   }
+  diag.duplicate_keys(root);
   SweepConfig config;
   config.file = fs::absolute(pipeline).lexically_normal();
   const fs::path base = config.file.parent_path();

@@ -134,6 +134,38 @@ TEST_CASE("two stages with the same id are reported at the second", "[pipeline]"
   }
 }
 
+TEST_CASE("a key given twice in one map is reported at the second with the first's line", "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_duplicate_keys");
+  SECTION("a top-level `stages:` given twice (yaml-cpp alone keeps the first silently)") {
+    check_single(dir, with_input("stages:\n  - plugin: test_centroid\nseed: 1\nstages:\n  - plugin: test_count\n"),
+                 {5, 1, {"duplicate key 'stages'", "first at line 2", "remove one"}});
+  }
+  SECTION("a parameter given twice, in a flow map inside a stage") {
+    check_single(dir,
+                 with_input("stages:\n  - plugin: test_scale\n    params: {factor: 2, factor: 3}\n"
+                            "  - plugin: test_centroid\n"),
+                 {4, 25, {"duplicate key 'factor'", "first at line 4"}});
+  }
+  SECTION("each repeat is reported, in file order, alongside the other problems") {
+    const auto diagnostics = pipeline_errors(
+        dir, with_input("seed: 1\nstages:\n  - plugin: test_centroid\n    id: a\n    id: b\nseed: 2\nbogus: 1\n"));
+    for (const Diagnostic& d : diagnostics) UNSCOPED_INFO(d.format());
+    REQUIRE(diagnostics.size() == 3);
+    CHECK(diagnostics[0].line == 6);
+    CHECK_THAT(diagnostics[0].message, Catch::Contains("duplicate key 'id' (first at line 5)"));
+    CHECK(diagnostics[1].line == 7);
+    CHECK_THAT(diagnostics[1].message, Catch::Contains("duplicate key 'seed' (first at line 2)"));
+    CHECK_THAT(diagnostics[2].message, Catch::Contains("unknown pipeline key 'bogus'"));
+  }
+  SECTION("the same key in different maps is not a duplicate") {
+    const auto file = medax::test::write_text(
+        dir / "pipeline.yaml",
+        with_input("stages:\n  - {plugin: test_scale, id: a, params: {factor: 2}}\n"
+                   "  - {plugin: test_scale, id: b, params: {factor: 3}}\n  - plugin: test_centroid\n"));
+    CHECK(load_pipeline(file, medax::test::good_registry()).stages.size() == 3);
+  }
+}
+
 TEST_CASE("unknown keys and formats are reported with the known ones", "[pipeline]") {
   const auto dir = scratch_dir("pipeline_unknown_keys");
   SECTION("top-level key") {

@@ -96,6 +96,30 @@ TEST_CASE("sweep errors are found before any job runs", "[sweep]") {
                     Catch::Contains("sweep scale.factor=-5") && Catch::Contains("must be"));
 }
 
+TEST_CASE("a key given twice in a sweep file is reported before any job runs", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_duplicate_keys");
+  // Without the check the second `scale.factor` axis (and the second `sweep:`) were silently dropped.
+  const fs::path file = write_text(dir / "sweep.yaml", "input: " + data_file("cube.off") +
+                                                           "\nsweep:\n  scale.factor: [1, 2]\n  scale.factor: [3]\n"
+                                                           "stages:\n  - {plugin: test_scale, id: scale}\n"
+                                                           "sweep:\n  scale.factor: [4]\n");
+  try {
+    medax::load_sweep(file);
+    FAIL("the sweep loaded without error");
+  } catch (const medax::PipelineError& e) {
+    std::vector<std::string> found;
+    for (const medax::Diagnostic& d : e.diagnostics()) found.push_back(d.format());
+    INFO(e.what());
+    REQUIRE(found.size() == 2);
+    CHECK_THAT(found[0], Catch::Contains("sweep.yaml:4:3") && Catch::Contains("duplicate key 'scale.factor' (first at line 3)"));
+    CHECK_THAT(found[1], Catch::Contains("sweep.yaml:7:1") && Catch::Contains("duplicate key 'sweep' (first at line 2)") &&
+                             Catch::Contains("remove one"));
+  }
+  write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, 2]\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n");
+  CHECK(medax::expand_sweep(medax::load_sweep(file)).size() == 2);
+}
+
 TEST_CASE("a crashing job and a timed-out job fail alone and are reported", "[sweep]") {
   const fs::path dir = scratch_dir("sweep_isolation");
   const fs::path file = write_text(

@@ -9,9 +9,15 @@
 #include <fmt/format.h>
 
 #include <dlfcn.h>
+#include <elf.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <optional>
 #include <set>
 
 namespace medax {
@@ -76,8 +82,114 @@ std::string loader_message(const fs::path& file) {
 }
 }  // namespace
 
+namespace {
+/// Reads `count` bytes at `offset` of `in`; false when the file ends first.
+bool read_at(std::ifstream& in, std::uint64_t offset, void* out, std::size_t count) {
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(offset));
+  in.read(static_cast<char*>(out), static_cast<std::streamsize>(count));
+  return in.gcount() == static_cast<std::streamsize>(count);
+}
+
+/// The ELF machine of the running kernel library: a plugin must match it.
+std::uint16_t own_machine() {
+  static const std::uint16_t machine = [] {
+    Elf64_Ehdr header{};
+    std::ifstream in(boost::dll::this_line_location().string(), std::ios::binary);
+    return in && read_at(in, 0, &header, sizeof header) ? header.e_machine : std::uint16_t{EM_NONE};
+  }();
+  return machine;
+}
+
+/// `offset + count * size` fits in `file_size` (no overflow: count and size are 16-bit, and an
+/// offset past the end fails first).
+bool table_fits(std::uint64_t offset, std::uint64_t count, std::uint64_t size, std::uint64_t file_size) {
+  return offset <= file_size && count * size <= file_size - offset;
+}
+
+/// Why `file` cannot be handed to dlopen, or nothing. The loader maps each PT_LOAD segment's
+/// file range and touches it: a truncated file kills the process with SIGBUS inside dlopen, so
+/// every range the loader reads is checked against the file's size first.
+std::optional<std::string> elf_problem(const fs::path& file) {
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(file, ec);
+  if (ec) return fmt::format("cannot be read: {}; check that it exists and is readable", ec.message());
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return fmt::format("cannot be opened: {}; check that it is readable", std::strerror(errno));
+  const std::string remove = "rebuild it or remove it from the plugin path";
+  unsigned char ident[EI_NIDENT] = {};
+  const bool whole_ident = read_at(in, 0, ident, sizeof ident);
+  if (std::memcmp(ident, ELFMAG, std::min<std::uint64_t>(SELFMAG, size)) != 0 || size == 0)
+    return fmt::format("not a plugin (not an ELF shared library: no ELF magic number in its {} bytes); remove it "
+                       "from the plugin path",
+                       size);
+  Elf64_Ehdr header{};
+  if (!whole_ident || size < sizeof header || !read_at(in, 0, &header, sizeof header))
+    return fmt::format("truncated (an ELF file of {} bytes, shorter than its {}-byte header); {}", size,
+                       sizeof header, remove);
+  if (ident[EI_CLASS] != ELFCLASS64)
+    return fmt::format("not a plugin for this machine (a 32-bit ELF file; medax plugins are 64-bit); {}", remove);
+  const unsigned char own_data = [] {
+    const std::uint16_t probe = 1;
+    unsigned char first = 0;
+    std::memcpy(&first, &probe, 1);
+    return first == 1 ? ELFDATA2LSB : ELFDATA2MSB;
+  }();
+  if (ident[EI_DATA] != own_data)
+    return fmt::format("not a plugin for this machine (its byte order differs); {}", remove);
+  if (header.e_machine != own_machine() && own_machine() != EM_NONE)
+    return fmt::format("not a plugin for this machine (ELF machine {} but this medax is machine {}); {}",
+                       header.e_machine, own_machine(), remove);
+  if (header.e_type != ET_DYN)
+    return fmt::format("not a plugin (ELF type {} is not a shared library; plugins are built with "
+                       "medax_add_plugin); remove it from the plugin path",
+                       header.e_type == ET_EXEC ? "executable" : header.e_type == ET_REL ? "object file"
+                                                                 : std::to_string(header.e_type));
+  const auto truncated = [&](const std::string& what, std::uint64_t end) {
+    return fmt::format("truncated (its {} ends at byte {} but the file has {} bytes: a copy or build was cut "
+                       "short); {}",
+                       what, end, size, remove);
+  };
+  if (header.e_phnum > 0 && header.e_phentsize != sizeof(Elf64_Phdr))
+    return fmt::format("not a plugin (corrupt ELF header: program header size {}); {}", header.e_phentsize, remove);
+  if (header.e_phnum > 0 && !table_fits(header.e_phoff, header.e_phnum, header.e_phentsize, size))
+    return truncated("program header table", header.e_phoff + std::uint64_t{header.e_phnum} * header.e_phentsize);
+  bool loads = false;
+  for (std::uint16_t i = 0; i < header.e_phnum; ++i) {
+    Elf64_Phdr segment{};
+    if (!read_at(in, header.e_phoff + std::uint64_t{i} * sizeof segment, &segment, sizeof segment))
+      return truncated("program header table", header.e_phoff + (std::uint64_t{i} + 1) * sizeof segment);
+    if (segment.p_type != PT_LOAD) continue;
+    loads = true;
+    if (segment.p_offset > size || segment.p_filesz > size - segment.p_offset)
+      return truncated(fmt::format("loaded segment {}", i), segment.p_offset + segment.p_filesz);
+  }
+  if (header.e_shoff != 0) {
+    if (header.e_shentsize != sizeof(Elf64_Shdr))
+      return fmt::format("not a plugin (corrupt ELF header: section header size {}); {}", header.e_shentsize, remove);
+    // e_shnum 0 with a table: the real count is in section 0's sh_size (extended numbering).
+    std::uint64_t sections = header.e_shnum;
+    if (sections == 0) {
+      Elf64_Shdr first{};
+      if (!table_fits(header.e_shoff, 1, sizeof first, size) || !read_at(in, header.e_shoff, &first, sizeof first))
+        return truncated("section header table", header.e_shoff + sizeof first);
+      sections = first.sh_size;
+    }
+    if (sections > size / sizeof(Elf64_Shdr) || !table_fits(header.e_shoff, sections, header.e_shentsize, size))
+      return truncated("section header table", header.e_shoff + sections * header.e_shentsize);
+  }
+  if (!loads) return fmt::format("not a plugin (an ELF file with nothing to load); {}", remove);
+  return std::nullopt;
+}
+}  // namespace
+
 bool Registry::load_file(const fs::path& file) {
   const std::string where = fmt::format("plugin {}", file.string());
+  // Checked before dlopen: a truncated library crashes the loader instead of failing.
+  if (const auto problem = elf_problem(file)) {
+    errors_.push_back(fmt::format("{}: {}", where, *problem));
+    return false;
+  }
   auto library = std::make_unique<boost::dll::shared_library>();
   boost::dll::fs::error_code ec;
   library->load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);

@@ -4,10 +4,17 @@
 
 #include <medax/kernel/registry.hpp>
 
+#include <elf.h>
+
 #include <cstdlib>
+#include <cstring>
 
 using namespace medax;
 using medax::test::plugin_dir;
+using medax::test::read_text;
+using medax::test::scratch_dir;
+using medax::test::write_text;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -20,6 +27,37 @@ std::string single_error(const std::string& case_name) {
   REQUIRE(registry.errors().size() == 1);
   CHECK(registry.stages().empty());
   return registry.errors().front();
+}
+
+const fs::path kGoodFile = plugin_dir("good") / "libmedax_kernel_test_good.so";
+
+/// A folder holding `bytes` as libmedax_broken.so beside a copy of the good package.
+fs::path folder_with_broken(const std::string& name, const std::string& bytes) {
+  const fs::path dir = scratch_dir("registry_" + name);
+  write_text(dir / "libmedax_broken.so", bytes);
+  fs::copy_file(kGoodFile, dir / kGoodFile.filename());
+  return dir;
+}
+
+/// Loads `dir`: the broken file gives one error line naming it, the good package loads whole.
+std::string broken_error(const fs::path& dir) {
+  Registry registry;
+  registry.load_directory(dir);
+  REQUIRE(registry.errors().size() == 1);
+  CHECK(registry.stages().size() == 9);
+  CHECK(registry.find("test_scale"));
+  const std::string error = registry.errors().front();
+  CHECK(contains(error, "plugin " + (dir / "libmedax_broken.so").string() + ": "));
+  CHECK(error.find('\n') == std::string::npos);
+  return error;
+}
+
+template <class T>
+T header_at(const std::string& bytes, std::size_t offset) {
+  REQUIRE(offset + sizeof(T) <= bytes.size());
+  T value;
+  std::memcpy(&value, bytes.data() + offset, sizeof(T));
+  return value;
 }
 
 }  // namespace
@@ -67,11 +105,88 @@ TEST_CASE("a plugin with a wrong ABI stamp gives one error line and registers no
   CHECK(contains(error, "rebuild"));
 }
 
-TEST_CASE("a corrupt .so gives one error line", "[registry]") {
+TEST_CASE("a text file named .so gives one error line", "[registry]") {
   const std::string error = single_error("corrupt");
   CHECK(contains(error, (plugin_dir("corrupt") / "libmedax_kernel_test_corrupt.so").string()));
-  CHECK(contains(error, "cannot be loaded"));
-  CHECK(contains(error, "file too short"));  // the loader's own words, not an errno text
+  CHECK(contains(error, "not a plugin (not an ELF shared library"));
+  CHECK(contains(error, "remove it from the plugin path"));
+}
+
+TEST_CASE("a library the loader refuses gives the loader's own words", "[registry]") {
+  // A whole, well-formed copy of the good package that needs a library nobody has: its
+  // DT_NEEDED name libmedax.so.N renamed (same length) to libmedaz.so.N.
+  std::string bytes = read_text(kGoodFile);
+  const std::size_t at = bytes.find("libmedax.so.");
+  REQUIRE(at != std::string::npos);
+  bytes[at + 7] = 'z';
+  const std::string error = broken_error(folder_with_broken("loader_refuses", bytes));
+  CHECK(contains(error, "cannot be loaded: libmedaz.so."));
+  CHECK(contains(error, "No such file or directory"));  // dlerror's text, not an errno text alone
+}
+
+TEST_CASE("a truncated plugin is refused before dlopen and the rest still loads", "[registry]") {
+  // Before the check, dlopen of a copy cut inside a loaded segment died with SIGBUS.
+  const std::string good = read_text(kGoodFile);
+  const auto ehdr = header_at<Elf64_Ehdr>(good, 0);
+  std::vector<Elf64_Phdr> loads;
+  for (std::size_t i = 0; i < ehdr.e_phnum; ++i) {
+    const auto phdr = header_at<Elf64_Phdr>(good, ehdr.e_phoff + i * sizeof(Elf64_Phdr));
+    if (phdr.p_type == PT_LOAD && phdr.p_filesz > 0) loads.push_back(phdr);
+  }
+  REQUIRE(loads.size() >= 2);
+  const std::size_t in_segment = loads[1].p_offset + loads[1].p_filesz / 2;
+  REQUIRE(in_segment < ehdr.e_shoff);
+
+  SECTION("cut inside the ELF header") {
+    const std::string error = broken_error(folder_with_broken("cut_header", good.substr(0, 40)));
+    CHECK(contains(error, "truncated (an ELF file of 40 bytes, shorter than its 64-byte header)"));
+    CHECK(contains(error, "rebuild it or remove it from the plugin path"));
+  }
+  SECTION("cut inside the program header table") {
+    const std::size_t cut = ehdr.e_phoff + sizeof(Elf64_Phdr) + 10;
+    const std::string error = broken_error(folder_with_broken("cut_phdrs", good.substr(0, cut)));
+    CHECK(contains(error, "truncated (its program header table ends at byte " +
+                                      std::to_string(ehdr.e_phoff + ehdr.e_phnum * sizeof(Elf64_Phdr)) +
+                                      " but the file has " + std::to_string(cut) + " bytes"));
+  }
+  SECTION("cut inside a loaded segment") {
+    const std::string error = broken_error(folder_with_broken("cut_segment", good.substr(0, in_segment)));
+    CHECK(contains(error, "truncated (its loaded segment "));
+    CHECK(contains(error, "ends at byte " + std::to_string(loads[1].p_offset + loads[1].p_filesz) + " but the file has " +
+                                      std::to_string(in_segment) + " bytes: a copy or build was cut short"));
+  }
+  SECTION("cut inside a loaded segment of a file without section headers") {
+    std::string bytes = good.substr(0, in_segment);
+    Elf64_Ehdr stripped = ehdr;
+    stripped.e_shoff = 0;
+    stripped.e_shnum = 0;
+    stripped.e_shstrndx = 0;
+    std::memcpy(bytes.data(), &stripped, sizeof stripped);
+    CHECK(contains(broken_error(folder_with_broken("cut_segment_no_sections", bytes)), "truncated (its loaded segment "));
+  }
+  SECTION("cut inside the section header table (the last byte missing)") {
+    const std::string error = broken_error(folder_with_broken("cut_sections", good.substr(0, good.size() - 1)));
+    CHECK(contains(error, "truncated (its section header table ends at byte " + std::to_string(good.size()) +
+                                      " but the file has " + std::to_string(good.size() - 1) + " bytes"));
+  }
+}
+
+TEST_CASE("an ELF file for another machine, of another class or not a library is refused by name", "[registry]") {
+  const std::string good = read_text(kGoodFile);
+  const auto patched = [&](auto&& change) {
+    std::string bytes = good;
+    auto header = header_at<Elf64_Ehdr>(bytes, 0);
+    change(header);
+    std::memcpy(bytes.data(), &header, sizeof header);
+    return bytes;
+  };
+  CHECK(contains(broken_error(folder_with_broken("elf32", patched([](Elf64_Ehdr& h) { h.e_ident[EI_CLASS] = ELFCLASS32; }))),
+                 "not a plugin for this machine (a 32-bit ELF file"));
+  const auto other = header_at<Elf64_Ehdr>(good, 0).e_machine == EM_AARCH64 ? EM_X86_64 : EM_AARCH64;
+  CHECK(contains(broken_error(folder_with_broken("machine", patched([&](Elf64_Ehdr& h) { h.e_machine = other; }))),
+                 "not a plugin for this machine (ELF machine " + std::to_string(other) + " but"));
+  CHECK(contains(broken_error(folder_with_broken("object", patched([](Elf64_Ehdr& h) { h.e_type = ET_REL; }))),
+                 "not a plugin (ELF type object file is not a shared library"));
 }
 
 TEST_CASE("a library without medax_plugin_entry gives one error line", "[registry]") {

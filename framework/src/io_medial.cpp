@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -49,14 +50,15 @@ class LineReader {
     try {
       std::size_t used = 0;
       const double v = std::stod(token, &used);
-      if (used == token.size()) return v;
-    } catch (const std::exception&) {
+      if (used == token.size() && std::isfinite(v)) return v;
+      if (used == token.size()) fail(fmt::format("'{}' is not a finite number (fix or remove the element)", token));
+    } catch (const std::logic_error&) {  // stod: invalid_argument, out_of_range
     }
     fail(fmt::format("'{}' is not a number", token));
   }
   Index index(const std::string& token, std::size_t count) const {
     const double v = number(token);
-    if (v < 0 || v != static_cast<double>(static_cast<long long>(v)) || v >= static_cast<double>(count))
+    if (v < 0 || v >= static_cast<double>(count) || v != std::floor(v))
       fail(fmt::format("vertex index {} is not in 0..{}", token, count == 0 ? 0 : count - 1));
     return static_cast<Index>(v);
   }
@@ -76,26 +78,37 @@ MedialComplex read_ma(const fs::path& path) {
   if (t.size() != 3) reader.fail("the first line must be 'nv ne nf' (three counts)");
   const auto count = [&](const std::string& s) {
     const double v = reader.number(s);
-    if (v < 0 || v != static_cast<double>(static_cast<long long>(v))) reader.fail("counts must be whole numbers >= 0");
+    if (v < 0 || v > 1e18 || v != std::floor(v)) reader.fail("counts must be whole numbers >= 0");
     return static_cast<std::size_t>(v);
   };
   const std::size_t nv = count(t[0]), ne = count(t[1]), nf = count(t[2]);
+  // Checked before anything is reserved: "v 0 0 0 0\n" takes 10 bytes, "e 0 1\n" 6, "f 0 1 2\n" 8.
+  const auto bytes = fs::file_size(path);
+  const long double needed = 10.0L * nv + 6.0L * ne + 8.0L * nf - 1;
+  if (needed > static_cast<long double>(bytes))
+    reader.fail(fmt::format("the header announces {} vertices, {} edges and {} faces but the file has only {} bytes "
+                            "(at least {:.0f} needed): the file is truncated or its header is wrong",
+                            nv, ne, nf, bytes, static_cast<double>(needed)));
   MedialComplex mc;
   mc.centres.reserve(nv);
   mc.radii.reserve(nv);
   while (reader.next(t)) {
     const std::string& tag = t[0];
     if (tag == "v") {
-      if (t.size() != 5) reader.fail("a vertex line is 'v x y z r'");
+      // Extra trailing numbers (the deleted/feature flag of some writers) are checked and ignored.
+      if (t.size() < 5) reader.fail("a vertex line is 'v x y z r'");
+      for (std::size_t k = 5; k < t.size(); ++k) reader.number(t[k]);
       if (!mc.edges.empty() || !mc.faces.empty()) reader.fail("vertices must come before edges and faces");
       const double r = reader.number(t[4]);
       if (!(r >= 0)) reader.fail("the radius must be >= 0");
       mc.add_vertex(Vec3(reader.number(t[1]), reader.number(t[2]), reader.number(t[3])), r);
     } else if (tag == "e") {
-      if (t.size() != 3) reader.fail("an edge line is 'e i j'");
+      if (t.size() < 3) reader.fail("an edge line is 'e i j'");
+      for (std::size_t k = 3; k < t.size(); ++k) reader.number(t[k]);
       mc.add_edge(reader.index(t[1], nv), reader.index(t[2], nv));
     } else if (tag == "f") {
-      if (t.size() != 4) reader.fail("a face line is 'f i j k'");
+      if (t.size() < 4) reader.fail("a face line is 'f i j k'");
+      for (std::size_t k = 4; k < t.size(); ++k) reader.number(t[k]);
       mc.add_face(reader.index(t[1], nv), reader.index(t[2], nv), reader.index(t[3], nv));
     } else {
       reader.fail(fmt::format("unknown line type '{}' (expected v, e or f)", tag));

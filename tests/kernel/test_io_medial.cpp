@@ -85,6 +85,18 @@ TEST_CASE(".ma reading accepts comments and blank lines", "[io][ma]") {
   CHECK(m.edges.size() == 1);
 }
 
+TEST_CASE(".ma reading ignores extra trailing numbers on element lines (deleted/feature flags)", "[io][ma]") {
+  const auto file = write_text(scratch_dir("io_ma_flags") / "flags.ma",
+                               "# flagged variant\n3 2 1\nv 0 0 0 1 0\nv 1 0 0 2 0  # comment\nv 0 1 0 3 1\n"
+                               "e 0 1 1\ne 1 2 0\nf 0 1 2 0\n");
+  const MedialComplex m = read_ma(file);
+  CHECK(m.radii == std::vector<double>{1, 2, 3});
+  CHECK(m.edges == std::vector<Segment>{{0, 1}, {1, 2}});
+  CHECK(m.faces == std::vector<Tri>{{0, 1, 2}});
+  CHECK_THROWS_WITH(read_ma(write_text(scratch_dir("io_ma_flags") / "word.ma", "1 0 0\nv 0 0 0 1 deleted\n")),
+                    Catch::Contains("word.ma:2: 'deleted' is not a number"));
+}
+
 TEST_CASE(".ma errors name the file and line", "[io][ma]") {
   SECTION("bad count header") {
     const auto e = ma_error("header", "2 1\nv 0 0 0 1\n");
@@ -108,7 +120,29 @@ TEST_CASE(".ma errors name the file and line", "[io][ma]") {
     CHECK_THAT(ma_error("tag", "1 0 0\nv 0 0 0 1\nx 1 2\n"), Catch::Contains("tag.ma:3: unknown line type 'x'"));
   }
   SECTION("counts that do not match the header") {
-    CHECK_THAT(ma_error("counts", "2 0 0\nv 0 0 0 1\n"), Catch::Contains("announces 2 0 0"));
+    // Long enough for the size check, so the counts are compared after reading.
+    CHECK_THAT(ma_error("counts", "2 0 0\nv 0.000 0.000 0.000 1.000\n"), Catch::Contains("announces 2 0 0"));
+    // Too short for the announced vertices: refused from the size, before reading.
+    CHECK_THAT(ma_error("short", "2 0 0\nv 0 0 0 1\n"), Catch::Contains("short.ma:1: the header announces 2 vertices"));
+  }
+  SECTION("non-finite numbers") {
+    CHECK_THAT(ma_error("inf", "2 1 0\nv 0 0 0 1\nv inf 0 0 1\ne 0 1\n"),
+               Catch::Contains("inf.ma:3: 'inf' is not a finite number"));
+    CHECK_THAT(ma_error("nan", "1 0 0\nv 0 0 0 nan\n"), Catch::Contains("nan.ma:2: 'nan' is not a finite number"));
+    CHECK_THAT(ma_error("flag", "2 1 0\nv 0 0 0 1\nv 1 0 0 1\ne 0 1 -inf\n"),
+               Catch::Contains("flag.ma:4: '-inf' is not a finite number"));
+  }
+  SECTION("a header announcing more than the file holds, before allocating") {
+    // Reading this 30-byte file once reserved ~24 GB.
+    const auto e = ma_error("huge", "999999999 999999999 999999999\n");
+    CHECK_THAT(e, Catch::Contains("huge.ma:1: the header announces 999999999 vertices, 999999999 edges and "
+                                  "999999999 faces but the file has only 30 bytes"));
+    CHECK_THROWS_WITH(read_ma(medax::test::data_file("bad/huge_header.ma")),
+                      Catch::Contains("huge_header.ma:1: the header announces 999999999 vertices"));
+    CHECK_THROWS_WITH(read_ma(medax::test::data_file("bad/inf.ma")), Catch::Contains("inf.ma:3: 'inf' is not a finite"));
+    CHECK_THROWS_WITH(read_ma(medax::test::data_file("bad/nan_radius.ma")),
+                      Catch::Contains("nan_radius.ma:3: 'nan' is not a finite"));
+    CHECK_THAT(ma_error("enormous", "1e300 0 0\n"), Catch::Contains("enormous.ma:1: counts must be whole numbers"));
   }
   SECTION("missing file") {
     CHECK_THROWS_WITH(read_ma(scratch_dir("io_ma_missing") / "none.ma"), Catch::Contains("none.ma: cannot open"));

@@ -210,6 +210,35 @@ void explain_obj(const fs::path& path, const std::string& text) {
     fail(path, fmt::format("{} vertices and no faces ('f' lines): medax needs a triangle surface, not points", nv));
 }
 
+/// ASCII STL explained after CGAL refused it: the first bad 'vertex' line, or a facet that does
+/// not have 3 vertices (a truncated file).
+void explain_stl(const fs::path& path, const std::string& text) {
+  Lines lines(text);
+  std::vector<std::string_view> t;
+  std::size_t facet = 0, corners = 0, vertex = 0;
+  bool solid = false, open = false;
+  while (lines.next(t)) {
+    if (t[0] == "solid") solid = true;
+    if (!solid) return;  // binary
+    if (t[0] == "facet") {
+      open = true;
+      corners = 0;
+    } else if (t[0] == "vertex") {
+      if (t.size() < 4)
+        fail(path, fmt::format("line {}: facet {}: a vertex line is 'vertex x y z'", lines.line(), facet));
+      for (int k = 1; k <= 3; ++k) coordinate(path, t[k], lines, vertex);
+      ++vertex;
+      ++corners;
+    } else if (t[0] == "endfacet") {
+      if (corners != 3)
+        fail(path, fmt::format("line {}: facet {} has {} vertices; an STL facet has 3", lines.line(), facet, corners));
+      open = false;
+      ++facet;
+    }
+  }
+  if (open) fail(path, fmt::format("facet {} is not closed by 'endfacet': the file is truncated", facet));
+}
+
 /// PLY header: element counts against the bytes after the header (ASCII: 2 bytes per property at
 /// least; binary: the property sizes, a list its count).
 void check_ply(const fs::path& path, const std::string& text) {
@@ -288,6 +317,7 @@ SurfaceMesh read_mesh(const fs::path& path) {
   }
   if (!ok) {
     if (ext == ".obj") explain_obj(path, read_all(path));
+    if (ext == ".stl") explain_stl(path, read_all(path));
     throw IoError(fmt::format("{}: cannot parse as {} (is the file complete and well formed?)",
                               path.string(), ext.substr(1)));
   }

@@ -87,6 +87,7 @@ TEST_CASE("hostile meshes are refused with the file, the reason and the line or 
       {"truncated.ply", {"truncated.ply: the header announces 4 'vertex' elements", "only 18 bytes"}},
       {"nan.off", {"nan.off: line 4: vertex 1 has the non-finite coordinate 'nan'"}},
       {"inf.obj", {"inf.obj: line 2: vertex 1 has the non-finite coordinate 'inf'"}},
+      {"nan.stl", {"nan.stl: line 5: vertex 1 has the non-finite coordinate 'nan'"}},
       {"bad_index.off", {"bad_index.off: line 6: face 0 refers to vertex 7 but the vertices are 0..2"}},
       {"bad_index.obj", {"bad_index.obj: line 4: face 0 refers to vertex 9 but the vertices are 1..3"}},
       {"negative_index.ply", {"negative_index.ply: face 0 refers to vertex -1 but the vertices are 0..2"}},

@@ -15,6 +15,7 @@
 namespace medax::cli {
 
 int bench(const BenchArgs& args) {
+  if (!check_pipeline_file(args.pipeline)) return 2;
   Registry& registry = Registry::global();
   PipelineConfig config;
   try {
@@ -31,8 +32,9 @@ int bench(const BenchArgs& args) {
     const RunResult result = run_pipeline(config, RunOptions{scratch, true});
     if (!result.ok) {
       fmt::print(stderr, "error: {}\n", result.error);
-      std::filesystem::remove_all(scratch);
-      return 1;
+      std::error_code ec;
+      std::filesystem::remove_all(scratch, ec);
+      return interrupted() ? interrupted_exit_code() : 1;
     }
     const bool timed = run >= args.warmup;
     fmt::print(stderr, "{} {}/{}\n", timed ? "run" : "warm-up", timed ? run - args.warmup + 1 : run + 1,

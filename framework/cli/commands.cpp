@@ -57,6 +57,14 @@ std::optional<PipelineConfig> load(const RunArgs& args, const Registry& registry
 
 }  // namespace
 
+bool check_pipeline_file(const std::filesystem::path& pipeline) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(pipeline, ec)) return true;  // a missing file is reported by the loader
+  fmt::print(stderr, "{}: error: is a folder, not a pipeline file; give a pipeline YAML file "
+             "(e.g. pipelines/quickstart.yaml)\n", pipeline.string());
+  return false;
+}
+
 int list_plugins() {
   Registry& registry = Registry::global();
   std::vector<std::vector<std::string>> rows{{"ROLE", "NAME", "PACKAGE", "VERSION", "SUMMARY"}};
@@ -104,6 +112,7 @@ int describe(const std::string& name, bool markdown) {
 }
 
 int validate(const RunArgs& args) {
+  if (!check_pipeline_file(args.pipeline)) return 2;
   if (is_sweep(args.pipeline)) return validate_sweep(args);
   Registry& registry = Registry::global();
   auto config = load(args, registry);
@@ -116,6 +125,7 @@ int validate(const RunArgs& args) {
 }
 
 int run(const RunArgs& args) {
+  if (!check_pipeline_file(args.pipeline)) return 2;
   if (!args.single_job && is_sweep(args.pipeline)) return run_sweep(args);
   Registry& registry = Registry::global();
   auto config = load(args, registry);
@@ -124,10 +134,15 @@ int run(const RunArgs& args) {
   options.out_dir = args.out.empty() ? std::filesystem::path(default_run_dir(*config)) : args.out;
   options.quiet = args.quiet;
   const RunResult result = run_pipeline(*config, options);
-  if (!result.ok) {
-    fmt::print(stderr, "error: {}\n(see {}/log.txt)\n", result.error, result.out_dir.string());
+  if (!result.ok && result.failed_stage == "run folder") {  // nothing ran, there is no log
+    fmt::print(stderr, "error: {}\n", result.error);
     return 1;
   }
+  if (!result.ok) {
+    fmt::print(stderr, "error: {}\n(see {}/log.txt)\n", result.error, result.out_dir.string());
+    return interrupted() ? interrupted_exit_code() : 1;
+  }
+  if (interrupted()) return interrupted_exit_code();
   fmt::print("results: {}\n", std::filesystem::absolute(result.out_dir).lexically_normal().string());
   return 0;
 }

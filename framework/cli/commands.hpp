@@ -1,11 +1,24 @@
 #pragma once
 // The `medax` sub-commands. Each returns the process exit code:
-// 0 success, 1 a stage failed, 2 bad usage or an invalid pipeline.
+// 0 success, 1 a stage or the run failed, 2 bad usage or an invalid pipeline, 128 + the signal
+// (130 SIGINT, 143 SIGTERM) when a run was interrupted (docs/pipeline-format.md).
 #include <filesystem>
 #include <string>
 #include <vector>
 
+namespace medax::detail {
+/// The first SIGINT/SIGTERM a run received, 0 if none (framework/src/run_context.hpp).
+int interrupt_signal();
+}  // namespace medax::detail
+
 namespace medax::cli {
+
+/// Exit code of a run interrupted by SIGINT/SIGTERM: 128 + the signal.
+inline int interrupted_exit_code() { return 128 + detail::interrupt_signal(); }
+inline bool interrupted() { return detail::interrupt_signal() != 0; }
+
+/// False (after printing why) when PIPELINE is missing or a folder; exit 2 then.
+bool check_pipeline_file(const std::filesystem::path& pipeline);
 
 struct RunArgs {
   std::filesystem::path pipeline;

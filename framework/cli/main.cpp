@@ -4,6 +4,10 @@
 #include <medax/version.hpp>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <exception>
+#include <new>
 
 int main(int argc, char** argv) {
   CLI::App app{"medax: compute, simplify, structure and evaluate 3D medial axes"};
@@ -46,10 +50,26 @@ int main(int argc, char** argv) {
   bench->add_option("--warmup", bench_args.warmup, "Untimed runs first")->check(CLI::NonNegativeNumber);
   bench->add_option("--repeat", bench_args.repeat, "Timed runs")->check(CLI::PositiveNumber);
 
-  CLI11_PARSE(app, argc, argv);
-  if (plugins->parsed()) return medax::cli::list_plugins();
-  if (describe->parsed()) return medax::cli::describe(name, markdown);
-  if (validate->parsed()) return medax::cli::validate(args);
-  if (bench->parsed()) return medax::cli::bench(bench_args);
-  return medax::cli::run(args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    fmt::print(stderr, "error: {}\nRun with --help for more information.\n", e.what());
+    return 2;  // usage errors exit 2, not CLI11's own codes
+  }
+  // The last catch: whatever escapes a command is reported, never `terminate`.
+  try {
+    if (plugins->parsed()) return medax::cli::list_plugins();
+    if (describe->parsed()) return medax::cli::describe(name, markdown);
+    if (validate->parsed()) return medax::cli::validate(args);
+    if (bench->parsed()) return medax::cli::bench(bench_args);
+    return medax::cli::run(args);
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "error: out of memory (std::bad_alloc); try a smaller input or raise the memory limit\n");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+  } catch (...) {
+    fmt::print(stderr, "error: an unknown exception stopped medax\n");
+  }
+  return 1;
 }

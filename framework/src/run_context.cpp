@@ -8,15 +8,17 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <signal.h>
 #include <cstdio>
 
 namespace medax::detail {
 
 namespace {
-std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_signal{0};  // the first SIGINT/SIGTERM received, 0 if none
+static_assert(std::atomic<int>::is_always_lock_free, "read and written in a signal handler");
 
-extern "C" void on_interrupt(int) {
-  if (g_interrupted.exchange(true)) std::_Exit(130);  // second Ctrl-C: stop now
+extern "C" void on_interrupt(int sig) {
+  if (g_signal.exchange(sig) != 0) std::_Exit(128 + sig);  // a second signal: stop now
 }
 
 std::uint64_t splitmix64(std::uint64_t x) {
@@ -33,8 +35,24 @@ std::uint64_t stage_seed(std::uint64_t pipeline_seed, const std::string& stage_i
   return splitmix64(pipeline_seed ^ splitmix64(h));
 }
 
-void install_interrupt_handler() { std::signal(SIGINT, on_interrupt); }
-bool interrupt_requested() { return g_interrupted.load(std::memory_order_relaxed); }
+void install_interrupt_handler() {
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+}
+bool interrupt_requested() { return g_signal.load(std::memory_order_relaxed) != 0; }
+int interrupt_signal() { return g_signal.load(std::memory_order_relaxed); }
+
+std::string signal_name(int sig) {
+  switch (sig) {
+    case SIGINT: return "SIGINT (Ctrl-C)";
+    case SIGTERM: return "SIGTERM";
+    default: return fmt::format("signal {}", sig);
+  }
+}
 
 RunContext::RunContext(std::shared_ptr<spdlog::logger> logger, std::string stage_id, std::uint64_t seed,
                        std::filesystem::path out_dir, SceneData& data)

@@ -13,9 +13,15 @@ namespace medax::detail {
 /// The stage's generator seed: the pipeline seed mixed with the stage id (SplitMix64).
 std::uint64_t stage_seed(std::uint64_t pipeline_seed, const std::string& stage_id);
 
-/// Installs a SIGINT handler that asks running stages to stop; a second Ctrl-C kills.
+/// Installs a SIGINT and SIGTERM handler that asks running stages to stop (the runner then
+/// stops cleanly and `medax` exits 128 + the signal: 130, 143); a second signal exits at once.
 void install_interrupt_handler();
 bool interrupt_requested();
+/// The first SIGINT/SIGTERM received since the handler was installed; 0 if none. Exported
+/// for the CLI's exit code (declared again in framework/cli/commands.hpp).
+int interrupt_signal();
+/// "SIGINT (Ctrl-C)", "SIGTERM", for log lines and messages.
+std::string signal_name(int sig);
 
 class RunContext : public Context {
  public:

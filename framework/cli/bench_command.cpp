@@ -34,7 +34,7 @@ int bench(const BenchArgs& args) {
       fmt::print(stderr, "error: {}\n", result.error);
       std::error_code ec;
       std::filesystem::remove_all(scratch, ec);
-      return interrupted() ? interrupted_exit_code() : 1;
+      return failed_run_exit_code(result.signal);
     }
     const bool timed = run >= args.warmup;
     fmt::print(stderr, "{} {}/{}\n", timed ? "run" : "warm-up", timed ? run - args.warmup + 1 : run + 1,

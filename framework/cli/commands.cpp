@@ -134,15 +134,14 @@ int run(const RunArgs& args) {
   options.out_dir = args.out.empty() ? std::filesystem::path(default_run_dir(*config)) : args.out;
   options.quiet = args.quiet;
   const RunResult result = run_pipeline(*config, options);
-  if (!result.ok && result.failed_stage == "run folder") {  // nothing ran, there is no log
+  if (!result.wrote_log) {  // nothing ran, there is no log
     fmt::print(stderr, "error: {}\n", result.error);
     return 1;
   }
   if (!result.ok) {
     fmt::print(stderr, "error: {}\n(see {}/log.txt)\n", result.error, result.out_dir.string());
-    return interrupted() ? interrupted_exit_code() : 1;
+    return failed_run_exit_code(result.signal);
   }
-  if (interrupted()) return interrupted_exit_code();
   fmt::print("results: {}\n", std::filesystem::absolute(result.out_dir).lexically_normal().string());
   return 0;
 }

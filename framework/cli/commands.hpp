@@ -6,16 +6,10 @@
 #include <string>
 #include <vector>
 
-namespace medax::detail {
-/// The first SIGINT/SIGTERM a run received, 0 if none (framework/src/run_context.hpp).
-int interrupt_signal();
-}  // namespace medax::detail
-
 namespace medax::cli {
 
-/// Exit code of a run interrupted by SIGINT/SIGTERM: 128 + the signal.
-inline int interrupted_exit_code() { return 128 + detail::interrupt_signal(); }
-inline bool interrupted() { return detail::interrupt_signal() != 0; }
+/// The exit code of a failed run: 128 + the signal when the user interrupted it, else 1.
+inline int failed_run_exit_code(int signal) { return signal ? 128 + signal : 1; }
 
 /// False (after printing why) when PIPELINE is missing or a folder; exit 2 then.
 bool check_pipeline_file(const std::filesystem::path& pipeline);

@@ -142,6 +142,7 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     if (log) log->error("{}", result.error);
     return result;
   }
+  result.wrote_log = true;
   log->info("medax {} running '{}' (seed {}) into {}", kVersion, config.name, config.seed, options.out_dir.string());
 
   detail::install_interrupt_handler();
@@ -150,7 +151,8 @@ RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const auto stop_if_interrupted = [&](const std::string& where, const std::string& failed_stage) {
     if (!detail::interrupt_requested()) return false;
     result.failed_stage = failed_stage;
-    result.error = fmt::format("interrupted by {} {}", detail::signal_name(detail::interrupt_signal()), where);
+    result.signal = detail::interrupt_signal();
+    result.error = fmt::format("interrupted by {} {}", detail::signal_name(result.signal), where);
     log->error("{}", result.error);
     return true;
   };

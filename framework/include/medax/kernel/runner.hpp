@@ -22,8 +22,10 @@ struct StageTiming {
 
 struct RunResult {
   bool ok = false;
-  std::string failed_stage;  ///< id of the stage that threw
+  std::string failed_stage;  ///< id of the stage that threw ("run folder" when none could start)
   std::string error;
+  bool wrote_log = false;    ///< false when the run folder or its log could not be made
+  int signal = 0;            ///< SIGINT or SIGTERM when the user stopped the run, else 0
   std::filesystem::path out_dir;
   std::vector<StageTiming> timings;  ///< one per stage that ran
 };

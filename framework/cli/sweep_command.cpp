@@ -8,6 +8,7 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <fmt/format.h>
 
+#include <csignal>
 #include <optional>
 
 namespace medax::cli {
@@ -54,7 +55,7 @@ int run_sweep(const RunArgs& args) {
   auto experiment = load_experiment(args, Registry::global());
   if (!experiment) return 2;
   const SweepConfig& config = experiment->config;
-  const std::vector<SweepJob>& jobs = experiment->jobs;
+  const std::vector<SweepJob>& jobs = experiment->jobs;  // each with its config_hash
   SweepOptions options;
   options.out_dir = args.out.empty() ? std::filesystem::path("medax-runs") / config.name : args.out;
   options.medax_executable = boost::dll::program_location().string();
@@ -71,9 +72,20 @@ int run_sweep(const RunArgs& args) {
                config.inputs.size(), config.inputs.empty() ? 0 : jobs.size() / config.inputs.size(),
                options.parallel_jobs, options.out_dir.string());
   const SweepSummary summary = run_sweep(config, jobs, options);
-  fmt::print("results: {} ({} ok, {} failed, {} skipped as already done)\n",
+  fmt::print("results: {} ({} ok, {} failed, {} skipped as already done{}{})\n",
              std::filesystem::absolute(options.out_dir / "results.csv").lexically_normal().string(),
-             summary.succeeded, summary.failed, summary.skipped);
+             summary.succeeded, summary.failed, summary.skipped,
+             summary.rerun_changed ? fmt::format(", {} run again as their configuration changed", summary.rerun_changed)
+                                   : "",
+             summary.signal ? fmt::format(", {} interrupted", summary.interrupted) : "");
+  if (summary.signal) {
+    fmt::print(stderr, "interrupted by {}: {} job(s) stopped, {} not started; run the same command again to "
+               "resume (interrupted and unstarted jobs run, finished ones are skipped)\n",
+               summary.signal == SIGINT ? "SIGINT (Ctrl-C)" : summary.signal == SIGTERM ? "SIGTERM" : "a signal",
+               summary.interrupted,
+               summary.total - summary.skipped - summary.succeeded - summary.failed - summary.interrupted);
+    return failed_run_exit_code(summary.signal);
+  }
   return summary.failed == 0 ? 0 : 1;
 }
 

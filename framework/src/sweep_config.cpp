@@ -119,6 +119,13 @@ std::optional<SweepAxis> named_axis(const YAML::Node& key, const YAML::Node& val
   return axis;
 }
 
+/// FNV-1a, 64 bits, as 16 hex digits: an identity for resume, not a security measure.
+std::string config_hash(const std::string& text) {
+  std::uint64_t h = 0xCBF29CE484222325ull;
+  for (unsigned char c : text) h = (h ^ c) * 0x100000001B3ull;
+  return fmt::format("{:016x}", h);
+}
+
 std::string folder_safe(const std::string& text) {
   std::string out;
   for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '=' || c == '-') ? c : '_';
@@ -209,10 +216,12 @@ SweepConfig load_sweep(const fs::path& pipeline) {
         diag.error(limits[key], fmt::format("`{}` must be a number", key));
       }
     };
-    if (!limits.IsMap()) diag.error(limits, "`limits:` is {timeout: SECONDS, memory_mib: MIB}");
+    if (!limits.IsMap())
+      diag.error(limits, "`limits:` is {timeout: SECONDS, memory_mib: MIB, interrupt_grace: SECONDS}");
     else {
       positive("timeout", config.limits.timeout_seconds);
       positive("memory_mib", config.limits.memory_mib);
+      positive("interrupt_grace", config.limits.interrupt_grace_seconds);
     }
   }
   diag.throw_if_any();
@@ -248,12 +257,14 @@ std::vector<SweepJob> expand_sweep(const SweepConfig& config) {
   return jobs;
 }
 
-void validate_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const Registry& registry) {
+void validate_sweep(const SweepConfig& config, std::vector<SweepJob>& jobs, const Registry& registry) {
   std::vector<Diagnostic> all;
   std::set<std::string> seen;
-  for (const SweepJob& job : jobs) {
+  for (SweepJob& job : jobs) {
     try {
-      load_pipeline(config.file, registry, Overrides{job.input, job.settings, "sweep"});
+      // The resolved YAML holds nothing of the run folder: its hash is the job's configuration.
+      job.config_hash = config_hash(resolved_yaml(load_pipeline(config.file, registry,
+                                                                Overrides{job.input, job.settings, "sweep"})));
     } catch (const PipelineError& e) {
       for (const Diagnostic& d : e.diagnostics())
         if (seen.insert(d.format()).second) all.push_back(d);

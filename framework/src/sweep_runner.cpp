@@ -1,8 +1,11 @@
 // Runs sweep jobs, each in its own `medax run --job` process, a few at a time, with per-job
 // time and memory limits. A job's status.json records how it ended; a finished job is skipped
-// when the sweep runs again.
+// when the sweep runs again with the same configuration. Ctrl-C/SIGTERM of the sweep is
+// forwarded to the running jobs, which are waited for and recorded as interrupted.
 #include <medax/io.hpp>
 #include <medax/kernel/sweep.hpp>
+
+#include "run_context.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -31,12 +34,27 @@ struct Running {
   bool timed_out = false;
 };
 
-bool already_done(const SweepJob& job, const fs::path& dir) {
+enum class Previous { none, done, changed };
+
+/// `done`: the folder holds a successful run of this job with this configuration. `changed`: a
+/// successful run of the same input and settings whose resolved configuration differs (the
+/// pipeline file or a plugin default was edited since, or it predates config_hash).
+Previous previous_run(const SweepJob& job, const fs::path& dir) {
   const nlohmann::json status = detail::read_json_file(dir / "status.json");
-  return status.is_object() && status.value("status", "") == "ok" &&
-         status.value("settings", std::vector<std::string>{}) == job.settings &&
-         status.value("input", "") == job.input.string();
+  if (!status.is_object() || status.value("status", "") != "ok" ||
+      status.value("settings", std::vector<std::string>{}) != job.settings ||
+      status.value("input", "") != job.input.string())
+    return Previous::none;
+  return status.value("config_hash", "") == job.config_hash ? Previous::done : Previous::changed;
 }
+
+/// How the sweep is being stopped after SIGINT/SIGTERM.
+struct Stop {
+  int signal = 0;  ///< 0: not stopping
+  Clock::time_point deadline;
+  bool killed = false;  ///< the grace ran out: SIGKILL sent
+  sigset_t old_mask;
+};
 
 /// Starts `medax run FILE --job --quiet --input X --set ... --out DIR` with its own process
 /// group (so a time-out kills all of it), stdout/stderr into the job folder, and the limits.
@@ -48,10 +66,23 @@ pid_t start_job(const SweepConfig& config, const SweepJob& job, const fs::path& 
     args.push_back(s);
   }
   const std::string output = (dir / "output.txt").string();
+  // Signals are held across fork: the child must not run the inherited handler (a forwarded
+  // SIGTERM would only raise a flag that exec forgets); it resets them to the default first.
+  sigset_t interrupts, old_mask;
+  sigemptyset(&interrupts);
+  sigaddset(&interrupts, SIGINT);
+  sigaddset(&interrupts, SIGTERM);
+  ::pthread_sigmask(SIG_BLOCK, &interrupts, &old_mask);
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("cannot start a job process (fork failed)");
+  if (pid < 0) {
+    ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+    throw std::runtime_error("cannot start a job process (fork failed)");
+  }
   if (pid == 0) {
-    ::setpgid(0, 0);
+    ::setpgid(0, 0);  // (the parent does it too: a signal forwarded at once must find the group)
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
     const int fd = ::open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       ::dup2(fd, STDOUT_FILENO);
@@ -69,6 +100,8 @@ pid_t start_job(const SweepConfig& config, const SweepJob& job, const fs::path& 
     ::execv(argv[0], argv.data());
     std::_Exit(127);
   }
+  ::setpgid(pid, pid);  // fails harmlessly once the child has exec'd (it did it itself)
+  ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
   return pid;
 }
 
@@ -83,14 +116,24 @@ std::string tail_of(const fs::path& file, std::size_t lines) {
   return out;
 }
 
-void record_status(const SweepJob& job, const fs::path& dir, int wait_status, bool timed_out, double seconds,
-                   const SweepConfig& config) {
+/// Writes status.json; returns its `status`.
+std::string record_status(const SweepJob& job, const fs::path& dir, int wait_status, bool timed_out, double seconds,
+                          const SweepConfig& config, const Stop& stop) {
   nlohmann::json status;
   status["input"] = job.input.string();
   status["settings"] = job.settings;
+  status["config_hash"] = job.config_hash;
   status["seconds"] = seconds;
   std::string state;
-  if (timed_out) {
+  const bool exited_ok = WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0;
+  if (stop.signal && !timed_out && !exited_ok) {
+    state = "interrupted";
+    status["signal"] = stop.signal;
+    status["error"] = stop.killed && WIFSIGNALED(wait_status) && WTERMSIG(wait_status) == SIGKILL
+                          ? fmt::format("the sweep was stopped by {}; the job was killed after the {} s grace",
+                                        detail::signal_name(stop.signal), config.limits.interrupt_grace_seconds)
+                          : fmt::format("the sweep was stopped by {}; the job stopped on it", detail::signal_name(stop.signal));
+  } else if (timed_out) {
     state = "timeout";
     status["error"] = fmt::format("killed after the {} s time limit", config.limits.timeout_seconds);
   } else if (WIFSIGNALED(wait_status)) {
@@ -112,6 +155,7 @@ void record_status(const SweepJob& job, const fs::path& dir, int wait_status, bo
   }
   status["status"] = state;
   detail::write_json_file(dir / "status.json", status);
+  return state;
 }
 
 std::string duration_text(double seconds) {
@@ -126,21 +170,30 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
   summary.total = jobs.size();
   const fs::path jobs_dir = options.out_dir / "jobs";
   fs::create_directories(jobs_dir);
+  // The handler `medax run` uses: it only raises a flag, which the loop below polls.
+  detail::install_interrupt_handler();
 
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    if (already_done(jobs[i], jobs_dir / jobs[i].name)) ++summary.skipped;
-    else pending.push_back(i);
+    switch (previous_run(jobs[i], jobs_dir / jobs[i].name)) {
+      case Previous::done: ++summary.skipped; break;
+      case Previous::changed: ++summary.rerun_changed; pending.push_back(i); break;
+      case Previous::none: pending.push_back(i); break;
+    }
   }
   if (!options.quiet && summary.skipped)
     fmt::print(stderr, "[sweep] {} of {} jobs already finished: skipped\n", summary.skipped, jobs.size());
+  if (!options.quiet && summary.rerun_changed)
+    fmt::print(stderr, "[sweep] {} finished job{} run again: the configuration changed since (pipeline file, "
+               "settings or plugin defaults)\n", summary.rerun_changed, summary.rerun_changed == 1 ? "" : "s");
 
   std::vector<Running> running;
   std::size_t next = 0, finished = 0;
+  Stop stop;
   const auto sweep_start = Clock::now();
   const int parallel = std::max(1, options.parallel_jobs);
-  while (next < pending.size() || !running.empty()) {
-    while (next < pending.size() && static_cast<int>(running.size()) < parallel) {
+  while ((!stop.signal && next < pending.size()) || !running.empty()) {
+    while (!detail::interrupt_requested() && next < pending.size() && static_cast<int>(running.size()) < parallel) {
       const SweepJob& job = jobs[pending[next]];
       const fs::path dir = jobs_dir / job.name;
       fs::create_directories(dir);
@@ -148,10 +201,31 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
       running.push_back({pending[next], start_job(config, job, dir, options), Clock::now()});
       ++next;
     }
+    if (detail::interrupt_requested() && !stop.signal) {
+      stop.signal = detail::interrupt_signal();
+      // A second Ctrl-C would _Exit in the handler and orphan the jobs: hold it until they are
+      // recorded (the wait is bounded by the grace).
+      sigset_t block;
+      sigemptyset(&block);
+      sigaddset(&block, SIGINT);
+      sigaddset(&block, SIGTERM);
+      ::pthread_sigmask(SIG_BLOCK, &block, &stop.old_mask);
+      stop.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(config.limits.interrupt_grace_seconds));
+      for (const Running& r : running) ::kill(-r.pid, stop.signal);
+      if (!options.quiet)
+        fmt::print(stderr, "[sweep] {}: stopping {} running job{} (killed if still running after {} s)\n",
+                   detail::signal_name(stop.signal), running.size(), running.size() == 1 ? "" : "s",
+                   config.limits.interrupt_grace_seconds);
+    }
+    if (stop.signal && !stop.killed && Clock::now() >= stop.deadline) {
+      for (const Running& r : running) ::kill(-r.pid, SIGKILL);
+      stop.killed = true;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     for (auto it = running.begin(); it != running.end();) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - it->start).count();
-      if (config.limits.timeout_seconds > 0 && elapsed > config.limits.timeout_seconds && !it->timed_out) {
+      if (config.limits.timeout_seconds > 0 && elapsed > config.limits.timeout_seconds && !it->timed_out && !stop.signal) {
         ::kill(-it->pid, SIGKILL);
         it->timed_out = true;
       }
@@ -161,20 +235,33 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
         continue;
       }
       const SweepJob& job = jobs[it->job];
-      record_status(job, jobs_dir / job.name, wait_status, it->timed_out, elapsed, config);
-      const bool ok = !it->timed_out && WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0;
-      ok ? ++summary.succeeded : ++summary.failed;
+      const std::string state = record_status(job, jobs_dir / job.name, wait_status, it->timed_out, elapsed, config, stop);
+      const bool ok = state == "ok";
+      if (state == "interrupted") ++summary.interrupted;
+      else ok ? ++summary.succeeded : ++summary.failed;
       ++finished;
       if (!options.quiet) {
         const double spent = std::chrono::duration<double>(Clock::now() - sweep_start).count();
         const double left = spent / finished * (pending.size() - finished);
         fmt::print(stderr, "[sweep] {}/{} done, {} failed, ~{} left{}\n", finished + summary.skipped, jobs.size(),
-                   summary.failed, duration_text(left), ok ? "" : " (" + job.name + " failed)");
+                   summary.failed, duration_text(left), ok ? "" : " (" + job.name + " " + state + ")");
       }
       it = running.erase(it);
     }
   }
   write_sweep_results(config, jobs, options.out_dir);
+  if (stop.signal) {
+    // Drop the signals held meanwhile (they would _Exit now), then restore the mask.
+    sigset_t held;
+    sigemptyset(&held);
+    sigaddset(&held, SIGINT);
+    sigaddset(&held, SIGTERM);
+    const timespec zero{0, 0};
+    while (::sigtimedwait(&held, nullptr, &zero) > 0) {
+    }
+    ::pthread_sigmask(SIG_SETMASK, &stop.old_mask, nullptr);
+    summary.signal = stop.signal;
+  }
   return summary;
 }
 

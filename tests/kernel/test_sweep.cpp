@@ -4,8 +4,15 @@
 
 #include <medax/kernel/sweep.hpp>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <fstream>
 #include <map>
 #include <set>
+#include <thread>
 
 using medax::test::data_file;
 using medax::test::plugin_dir;
@@ -43,6 +50,74 @@ std::string column(const std::vector<std::string>& header, const std::vector<std
   return row.at(static_cast<std::size_t>(it - header.begin()));
 }
 
+/// The results.csv column `name`, one value per job row.
+std::vector<std::string> csv_column(const fs::path& csv, const std::string& name) {
+  const auto lines = lines_of(read_text(csv));
+  REQUIRE(!lines.empty());
+  const auto header = csv_cells(lines[0]);
+  std::vector<std::string> values;
+  for (std::size_t i = 1; i < lines.size(); ++i) values.push_back(column(header, csv_cells(lines[i]), name));
+  return values;
+}
+
+/// Starts `medax ARGS...` in the background (stdout and stderr into `dir`); returns its pid.
+pid_t spawn_medax(const std::vector<std::string>& args, const fs::path& dir) {
+  const std::string binary = (fs::path(MEDAX_BINARY_DIR) / "bin" / "medax").string();
+  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    ::setenv("MEDAX_PLUGIN_PATH", kPlugins.c_str(), 1);
+    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) ::_exit(127);
+    std::vector<char*> argv{const_cast<char*>(binary.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(binary.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// Waits until the log of job `name` contains `text`: in its folder or, while the run writes
+/// into a staging folder, in `name.partial-*`.
+bool wait_for_job_log(const fs::path& jobs_dir, const std::string& name, const std::string& text,
+                      std::chrono::seconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < end) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(jobs_dir, ec)) {
+      const std::string folder = entry.path().filename().string();
+      if (folder != name && folder.rfind(name + ".partial-", 0) != 0) continue;
+      const fs::path log = entry.path() / "log.txt";
+      if (fs::exists(log, ec) && read_text(log).find(text) != std::string::npos) return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+/// The processes whose parent is `parent` (from /proc/PID/stat).
+std::vector<pid_t> children_of(pid_t parent) {
+  std::vector<pid_t> children;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "stat");
+    std::string stat;
+    if (!std::getline(in, stat)) continue;  // gone meanwhile
+    const auto close = stat.rfind(')');     // "PID (COMM) STATE PPID ..."; COMM may hold spaces
+    if (close == std::string::npos) continue;
+    std::istringstream fields(stat.substr(close + 2));
+    std::string state;
+    pid_t ppid = 0;
+    fields >> state >> ppid;
+    if (ppid == parent) children.push_back(static_cast<pid_t>(std::stol(name)));
+  }
+  return children;
+}
+
 }  // namespace
 
 TEST_CASE("a sweep expands to the cartesian product with inputs outermost", "[sweep]") {
@@ -54,7 +129,7 @@ TEST_CASE("a sweep expands to the cartesian product with inputs outermost", "[sw
                                        "  - {plugin: test_count, id: count}\n");
   CHECK(medax::is_sweep(file));
   const medax::SweepConfig config = medax::load_sweep(file);
-  const auto jobs = medax::expand_sweep(config);
+  auto jobs = medax::expand_sweep(config);
   REQUIRE(jobs.size() == 2 * 3 * 2);
   CHECK(jobs[0].input.filename() == "cube.off");
   CHECK(jobs[0].settings == std::vector<std::string>{"scale.factor=1", "count.element=all"});
@@ -92,7 +167,8 @@ TEST_CASE("sweep errors are found before any job runs", "[sweep]") {
   write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, -5]\n"
                    "stages:\n  - {plugin: test_scale, id: scale}\n");
   const auto config = medax::load_sweep(file);
-  CHECK_THROWS_WITH(medax::validate_sweep(config, medax::expand_sweep(config), medax::test::good_registry()),
+  auto jobs = medax::expand_sweep(config);
+  CHECK_THROWS_WITH(medax::validate_sweep(config, jobs, medax::test::good_registry()),
                     Catch::Contains("sweep scale.factor=-5") && Catch::Contains("must be"));
 }
 
@@ -209,7 +285,7 @@ TEST_CASE("a named sweep axis applies bundles of settings with plugin swaps firs
                               "    - {name: oracle, extract.oracle: test_radius_field, extract.plugin: test_oracle_centroid}\n"
                               "stages:\n  - {plugin: test_scale, id: scale}\n  - {plugin: test_centroid, id: extract}\n");
   const auto config = medax::load_sweep(file);
-  const auto jobs = medax::expand_sweep(config);
+  auto jobs = medax::expand_sweep(config);
   REQUIRE(jobs.size() == 2);
   CHECK(jobs[0].assignment == std::vector<std::pair<std::string, std::string>>{{"method", "small"}});
   CHECK(jobs[0].settings == std::vector<std::string>{"scale.factor=0.5"});
@@ -217,4 +293,94 @@ TEST_CASE("a named sweep axis applies bundles of settings with plugin swaps firs
   CHECK(jobs[1].settings ==
         std::vector<std::string>{"extract.plugin=test_oracle_centroid", "extract.oracle=test_radius_field"});
   medax::validate_sweep(config, jobs, medax::test::good_registry());
+}
+
+TEST_CASE("a resumed sweep runs again the jobs whose configuration changed", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_resume_changed");
+  const auto sweep_file = [&](const std::string& seconds, const std::string& table) {
+    return write_text(dir / "sweep.yaml", "name: changed\ninput: " + data_file("cube.off") +
+                                              "\nsweep:\n  c.element: [vertices, all]\n" + table +
+                                              "stages:\n  - plugin: test_centroid\n  - {plugin: test_count, id: c}\n"
+                                              "  - {plugin: test_sleep, id: nap, params: {seconds: " + seconds + "}}\n");
+  };
+  const fs::path file = sweep_file("0", "");
+  const std::string command = "run '" + file.string() + "' --out '" + (dir / "out").string() + "'";
+  const fs::path csv = dir / "out" / "results.csv";
+  const auto first = run_medax(command, kPlugins, dir);
+  INFO(first.out << first.err);
+  REQUIRE(first.code == 0);
+  CHECK(csv_column(csv, "nap.slept") == std::vector<std::string>{"0", "0"});
+  const std::string status = read_text(dir / "out" / "jobs" / "0001-cube-element=vertices" / "status.json");
+  CHECK_THAT(status, Catch::Matches(R"([\s\S]*"config_hash": ?"[0-9a-f]{16}"[\s\S]*)"));
+
+  // Unchanged, or changed only in what the table shows: nothing runs again.
+  sweep_file("0", "table: [c.vertices]\n");
+  const auto same = run_medax(command, kPlugins, dir);
+  INFO(same.out << same.err);
+  CHECK(same.out.find("0 ok, 0 failed, 2 skipped as already done)") != std::string::npos);
+
+  // A parameter default edited in the file: both jobs run again with it (before: skipped, and
+  // results.csv kept the old value).
+  sweep_file("0.01", "");
+  const auto edited = run_medax(command, kPlugins, dir);
+  INFO(edited.out << edited.err);
+  CHECK(edited.code == 0);
+  CHECK(edited.out.find("2 ok, 0 failed, 0 skipped as already done, 2 run again as their configuration changed") !=
+        std::string::npos);
+  CHECK(edited.err.find("2 finished jobs run again: the configuration changed") != std::string::npos);
+  CHECK(csv_column(csv, "nap.slept") == std::vector<std::string>{"0.01", "0.01"});
+  CHECK(read_text(dir / "out" / "jobs" / "0001-cube-element=vertices" / "status.json") != status);
+}
+
+TEST_CASE("SIGTERM or SIGINT of a sweep stops its jobs, records them and writes the results", "[sweep][faults]") {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    DYNAMIC_SECTION("signal " << sig) {
+      const fs::path dir = scratch_dir("sweep_interrupt_" + std::to_string(sig));
+      // One job stops on the forwarded signal after its short sleep; test_sleep ignores the
+      // signal, so the long one is killed when the 1 s grace runs out.
+      const fs::path file = write_text(
+          dir / "sweep.yaml", "name: interrupt\ninput: " + data_file("cube.off") +
+                                  "\nlimits: {interrupt_grace: 1}\nsweep:\n  nap.seconds: [1, 600]\n"
+                                  "stages:\n  - plugin: test_centroid\n  - {plugin: test_sleep, id: nap}\n");
+      const fs::path out = dir / "out";
+      const std::vector<std::string> jobs{"0001-cube-seconds=1", "0002-cube-seconds=600"};
+      const pid_t sweep = spawn_medax({"run", file.string(), "-j", "2", "--out", out.string()}, dir);
+      bool started = true;
+      for (const std::string& job : jobs)
+        started = started && wait_for_job_log(out / "jobs", job, "read ", std::chrono::seconds(60));
+      const std::vector<pid_t> job_pids = children_of(sweep);
+      ::kill(sweep, started ? sig : SIGKILL);
+      int wait_status = 0;
+      REQUIRE(::waitpid(sweep, &wait_status, 0) == sweep);
+      INFO(read_text(dir / "stdout.txt") << read_text(dir / "stderr.txt"));
+      REQUIRE(started);
+      CHECK(job_pids.size() == 2);
+      REQUIRE(WIFEXITED(wait_status));  // not killed by the signal: it stopped cleanly
+      CHECK(WEXITSTATUS(wait_status) == 128 + sig);
+      for (const pid_t pid : job_pids) {  // no job left behind, nor anything in its process group
+        CHECK(::kill(pid, 0) == -1);
+        CHECK(::kill(-pid, 0) == -1);
+        CHECK(errno == ESRCH);
+      }
+      const std::string short_job = read_text(out / "jobs" / jobs[0] / "status.json");
+      CHECK((short_job.find("\"status\": \"interrupted\"") != std::string::npos ||
+             short_job.find("\"status\": \"ok\"") != std::string::npos));
+      const std::string long_job = read_text(out / "jobs" / jobs[1] / "status.json");
+      CHECK(long_job.find("\"status\": \"interrupted\"") != std::string::npos);
+      CHECK(long_job.find("killed after the 1 s grace") != std::string::npos);
+      const auto statuses = csv_column(out / "results.csv", "status");
+      REQUIRE(statuses.size() == 2);
+      CHECK(statuses[1] == "interrupted");
+      CHECK(read_text(dir / "stderr.txt").find("run the same command again to resume") != std::string::npos);
+
+      // Resume: the interrupted jobs run again (here the long one meets a 5 s time limit).
+      const auto resumed = run_medax("run '" + file.string() + "' -j 2 --timeout 5 --out '" + out.string() + "'",
+                                     kPlugins, dir);
+      INFO(resumed.out << resumed.err);
+      const auto after = csv_column(out / "results.csv", "status");
+      REQUIRE(after.size() == 2);
+      CHECK(after[0] == "ok");
+      CHECK(after[1] == "timeout");
+    }
+  }
 }

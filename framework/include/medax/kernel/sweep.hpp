@@ -30,6 +30,8 @@ struct PlotSpec {
 struct SweepLimits {
   double timeout_seconds = 0;  ///< 0: none
   double memory_mib = 0;       ///< address-space limit per job; 0: none
+  /// After Ctrl-C/SIGTERM the running jobs get the signal and this long to stop, then SIGKILL.
+  double interrupt_grace_seconds = 10;
 };
 
 struct SweepConfig {
@@ -48,6 +50,9 @@ struct SweepJob {
   std::filesystem::path input;
   std::vector<std::pair<std::string, std::string>> assignment;  ///< axis key -> shown value
   std::vector<std::string> settings;                            ///< "KEY=VALUE" for --set
+  /// Hash of the job's resolved configuration (the pipeline with its input and settings, every
+  /// default filled in); validate_sweep sets it. A finished job with another hash runs again.
+  std::string config_hash;
 };
 
 /// True when the file has `sweep:` or `inputs:` (so `medax run` runs it as an experiment).
@@ -56,8 +61,9 @@ bool is_sweep(const std::filesystem::path& pipeline);
 SweepConfig load_sweep(const std::filesystem::path& pipeline);
 /// The cartesian product, inputs outermost, then the axes in file order.
 std::vector<SweepJob> expand_sweep(const SweepConfig& config);
-/// Validates every job as a single pipeline before any work. Throws PipelineError.
-void validate_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const Registry& registry);
+/// Validates every job as a single pipeline before any work and sets each job's config_hash.
+/// Throws PipelineError.
+void validate_sweep(const SweepConfig& config, std::vector<SweepJob>& jobs, const Registry& registry);
 
 struct SweepOptions {
   std::filesystem::path out_dir;
@@ -68,10 +74,17 @@ struct SweepOptions {
 
 struct SweepSummary {
   std::size_t total = 0, skipped = 0, succeeded = 0, failed = 0;
+  std::size_t rerun_changed = 0;  ///< finished jobs run again because their configuration changed
+  std::size_t interrupted = 0;    ///< jobs stopped by a Ctrl-C/SIGTERM of the sweep
+  int signal = 0;                 ///< SIGINT/SIGTERM that stopped the sweep; 0 if none
 };
 
-/// Runs the jobs not already finished (a job folder with a successful status.json for the same
-/// settings is skipped: a sweep can be resumed), then writes results.csv, results.md and plots.
+/// Runs the jobs not already finished (a job folder whose status.json says ok for the same
+/// input, settings and config_hash is skipped: a sweep can be resumed), then writes results.csv,
+/// results.md and plots. On SIGINT/SIGTERM (the handler of run_context.hpp) it starts no more
+/// jobs, forwards the signal to every running job's process group, waits up to
+/// limits.interrupt_grace_seconds and then kills them, records them as `interrupted`, writes the
+/// results of what finished and returns with `signal` set.
 SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const SweepOptions& options);
 
 /// Collects every job's status, metrics and timings into results.csv and results.md, and draws

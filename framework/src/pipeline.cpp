@@ -230,6 +230,19 @@ class Validator {
   const Registry& registry_;
 };
 
+/// Why `name` cannot name a folder inside medax-runs/, or nullopt when it can.
+std::optional<std::string> name_problem(const std::string& name) {
+  if (name.empty()) return std::string("is empty");
+  for (const char c : name) {
+    if (c == '/' || c == '\\') return fmt::format("'{}' contains the path separator '{}'", name, c);
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return fmt::format("'{}' contains a control character", name);
+  }
+  if (name.find("..") != std::string::npos) return fmt::format("'{}' contains '..'", name);
+  if (name == ".") return std::string("'.' is not a folder name");
+  return std::nullopt;
+}
+
 fs::path resolve_path(const fs::path& base_dir, const std::string& text) {
   fs::path p(text);
   if (p.is_relative()) p = base_dir / p;
@@ -331,8 +344,21 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
   config.file = fs::absolute(file).lexically_normal();
   const fs::path base = config.file.parent_path();
   config.name = file.stem().string();
+  if (!root["name"] && name_problem(config.name))  // a file named `...yaml` has the stem `..`
+    check.error_at(file.string(), fmt::format("the file's name '{}' cannot name a run folder; add `name: NAME` "
+                                              "(letters, digits, '-' and '_')", config.name));
   if (root["name"]) {
-    if (auto name = scalar(check, root["name"], "`name`")) config.name = *name;
+    if (auto name = scalar(check, root["name"], "`name`")) {
+      config.name = *name;
+      // The default run folder is medax-runs/<name>-<input stem> (and a sweep's medax-runs/<name>):
+      // a separator or `..` would put it elsewhere.
+      if (const auto problem = name_problem(*name))
+        check.error(root["name"],
+                    fmt::format("`name` {}: it names the run folder (medax-runs/<name>-<input>; an experiment's "
+                                "medax-runs/<name>), so it must be one folder name: any characters but '/', '\\' and "
+                                "control characters, without '..' (e.g. letters, digits, '-' and '_')",
+                                *problem));
+    }
   }
   if (root["medax"] && root["medax"].Scalar() != "1")
     check.error(root["medax"], "this medax reads pipeline format 1; `medax: " + root["medax"].Scalar() + "` is newer");
@@ -370,6 +396,7 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
     Validator validator(check, registry);
     std::set<std::string> ids;
     bool has_medial = !config.medial_input.empty();
+    std::string medial_source;  // the first extraction stage; empty while the complex is only medial_input's
     for (const YAML::Node& node : stages) {
       if (node.IsMap() && node["enabled"]) {  // `enabled: false` (or --set STAGE.enabled=false) skips it
         const auto enabled = parse_bool(node["enabled"].Scalar());
@@ -382,11 +409,29 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
         // stages, so one mistake is not reported twice.
         if (node.IsMap() && node["plugin"] && node["plugin"].IsScalar())
           if (const RegisteredStage* s = registry.find(node["plugin"].Scalar()))
-            has_medial = has_medial || s->info().role == Role::Extraction;
+            if (s->info().role == Role::Extraction) {
+              has_medial = true;
+              if (medial_source.empty()) medial_source = s->info().name;
+            }
         continue;
       }
       if (!ids.insert(stage->id).second)
         check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
+      if (stage->role == Role::Conditioning && has_medial) {
+        // Conditioning changes the surface, not a complex already built or read: the two would
+        // disagree (normalize after voronoi gave an axis at twice the scale).
+        check.error(node.IsMap() ? node["plugin"] : node,
+                    medial_source.empty()
+                        ? fmt::format("`{}` (conditioning) comes after `medial_input:`: conditioning changes the "
+                                      "shape but not the medial complex read from {}, so the two would disagree; "
+                                      "remove `{}`, or drop `medial_input:` and extract the axis after it",
+                                      stage->plugin, config.medial_input.filename().string(), stage->plugin)
+                        : fmt::format("`{}` (conditioning) comes after `{}` (extraction): conditioning changes the "
+                                      "shape but not the medial complex, so the two would disagree; move it before "
+                                      "the extraction",
+                                      stage->plugin, medial_source));
+      }
+      if (stage->role == Role::Extraction && medial_source.empty()) medial_source = stage->plugin;
       if (stage->role == Role::Extraction) has_medial = true;
       else if (stage->role != Role::Conditioning && !has_medial)
         check.error(node, fmt::format("'{}' is a {} stage and needs a medial complex: put an extraction stage "

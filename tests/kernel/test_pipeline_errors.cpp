@@ -269,3 +269,92 @@ TEST_CASE("a stage's own parameter check runs at validation and points at its pa
                           "    params: {field: \"\"}\n"),
                {5, 13, {"'test_radius_field'", "must name the field"}});
 }
+
+TEST_CASE("a conditioning stage after the medial complex exists is a role-order error at its plugin",
+          "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_role_order");
+  SECTION("after an extraction stage (normalize after voronoi gave an axis at twice the scale)") {
+    check_single(dir,
+                 with_input("stages:\n  - plugin: test_centroid\n  - plugin: test_scale\n    params: {factor: 2}\n"
+                            "  - plugin: test_count\n"),
+                 {4, 13, {"`test_scale` (conditioning) comes after `test_centroid` (extraction)",
+                          "changes the shape but not the medial complex", "move it before the extraction"}});
+  }
+  SECTION("after `medial_input:`, which gives the complex before any stage") {
+    medax::test::write_text(dir / "given.ma", "1 0 0\nv 0.5 0.5 0.5 0.5\n");
+    check_single(dir,
+                 with_input("medial_input: given.ma\nstages:\n  - plugin: test_scale\n  - plugin: test_count\n"),
+                 {4, 13, {"`test_scale` (conditioning) comes after `medial_input:`", "given.ma",
+                          "so the two would disagree"}});
+  }
+  SECTION("each late conditioning stage is reported, naming the first extraction") {
+    const auto diagnostics =
+        pipeline_errors(dir, with_input("stages:\n  - plugin: test_centroid\n  - {plugin: test_scale, id: a}\n"
+                                        "  - {plugin: test_centroid, id: again}\n  - {plugin: test_scale, id: b}\n"));
+    for (const Diagnostic& d : diagnostics) UNSCOPED_INFO(d.format());
+    REQUIRE(diagnostics.size() == 2);
+    CHECK(diagnostics[0].line == 4);
+    CHECK(diagnostics[1].line == 6);
+    for (const Diagnostic& d : diagnostics) CHECK_THAT(d.message, Catch::Contains("after `test_centroid`"));
+  }
+  SECTION("an invalid extraction stage still counts, so the late stage is reported too") {
+    const auto diagnostics = pipeline_errors(
+        dir, with_input("stages:\n  - {plugin: test_centroid, params: {nope: 1}}\n  - plugin: test_scale\n"));
+    for (const Diagnostic& d : diagnostics) UNSCOPED_INFO(d.format());
+    REQUIRE(diagnostics.size() == 2);
+    CHECK(diagnostics[1].line == 4);
+    CHECK_THAT(diagnostics[1].message, Catch::Contains("comes after `test_centroid` (extraction)"));
+  }
+}
+
+TEST_CASE("conditioning before the extraction, or switched off after it, is valid", "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_role_order_ok");
+  const auto file = medax::test::write_text(
+      dir / "pipeline.yaml",
+      with_input("stages:\n  - {plugin: test_scale, id: a}\n  - plugin: test_centroid\n"
+                 "  - {plugin: test_scale, id: late, enabled: false}\n  - plugin: test_count\n"));
+  const PipelineConfig config = load_pipeline(file, medax::test::good_registry());
+  REQUIRE(config.stages.size() == 3);
+  CHECK(config.stages[0].id == "a");
+  CHECK(config.stages[1].role == Role::Extraction);
+  // Turned on from the command line, the late stage is refused like one written in the file.
+  const auto diagnostics = pipeline_errors(
+      dir, with_input("stages:\n  - plugin: test_centroid\n  - {plugin: test_scale, id: late, enabled: false}\n"),
+      Overrides{{}, {"late.enabled=true"}});
+  REQUIRE(diagnostics.size() == 1);
+  CHECK_THAT(diagnostics[0].message, Catch::Contains("`test_scale` (conditioning) comes after `test_centroid`"));
+}
+
+TEST_CASE("a name that would put the run folder outside medax-runs/ is refused at the name", "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_name_escape");
+  for (const std::string name : {"../..", "..", "a/b", "/tmp/x", "a\\\\b", "x..y", "\"a\\nb\""}) {
+    INFO(name);
+    check_single(dir, with_input("name: " + name + "\nstages:\n  - plugin: test_centroid\n"),
+                 {2, 7, {"`name`", "must be one folder name", "any characters but '/', '\\'", "without '..'"}});
+  }
+  SECTION("the message names the problem") {
+    const auto d = pipeline_errors(dir, with_input("name: ../..\nstages:\n  - plugin: test_centroid\n"));
+    REQUIRE(d.size() == 1);
+    CHECK_THAT(d[0].message, Catch::Contains("'../..' contains the path separator '/'"));
+    CHECK_THAT(d[0].message, Catch::Contains("medax-runs/<name>-<input>"));
+  }
+  SECTION("ordinary names, spaces and dots included, are kept") {
+    for (const std::string name : {"quickstart", "round trip", "v1.2-best_run", "résumé"}) {
+      INFO(name);
+      const auto file =
+          medax::test::write_text(dir / "p.yaml", with_input("name: " + name + "\nstages:\n  - plugin: test_centroid\n"));
+      CHECK(load_pipeline(file, medax::test::good_registry()).name == name);
+    }
+  }
+  SECTION("without `name:`, a file whose stem is `..` is refused too") {
+    const auto file = medax::test::write_text(dir / "...yaml", with_input("stages:\n  - plugin: test_centroid\n"));
+    try {
+      load_pipeline(file, medax::test::good_registry());
+      FAIL("no error");
+    } catch (const PipelineError& e) {
+      REQUIRE(e.diagnostics().size() == 1);
+      CHECK(e.diagnostics()[0].file == file.string());
+      CHECK_THAT(e.diagnostics()[0].message, Catch::Contains("add `name: NAME`"));
+    }
+  }
+}

@@ -1,14 +1,30 @@
 #include <medax/io.hpp>
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 namespace medax {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// Flushes `path` (a file or a folder) to the disk; returns errno, or 0.
+int sync_path(const fs::path& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return errno;
+  const int rc = ::fsync(fd) == 0 ? 0 : errno;
+  ::close(fd);
+  return rc;
+}
+
+}  // namespace
 
 void write_file_atomic(const fs::path& path, const std::function<void(std::ostream&)>& body) {
   static std::atomic<unsigned> counter{0};
@@ -21,14 +37,24 @@ void write_file_atomic(const fs::path& path, const std::function<void(std::ostre
       if (!out) throw IoError(fmt::format("{}: cannot create file (does the folder exist and is it writable?)", temp.string()));
       body(out);
       out.flush();
+      out.close();
       if (!out) throw IoError(fmt::format("{}: write failed (disk full?)", path.string()));
     }
-    fs::rename(temp, path);
+    // The data reaches the disk before the name does: after a crash the target is the old
+    // file or the whole new one, never an empty or torn one.
+    if (const int err = sync_path(temp, O_RDONLY))
+      throw IoError(fmt::format("{}: write failed while flushing to disk: {} (disk full or failing?)", path.string(),
+                                std::strerror(err)));
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (ec)
+      throw IoError(fmt::format("{}: cannot replace it with the written file: {}", path.string(), ec.message()));
   } catch (...) {
     std::error_code ignored;
     fs::remove(temp, ignored);
     throw;
   }
+  sync_path(dir, O_RDONLY | O_DIRECTORY);  // the rename itself; best effort (some file systems refuse)
 }
 
 }  // namespace medax

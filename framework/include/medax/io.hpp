@@ -35,7 +35,9 @@ MedialComplex read_medial(const std::filesystem::path& path);
 void write_medial(const std::filesystem::path& path, const MedialComplex& medial);
 
 /// Writes `path` atomically: `body` writes into a temporary file in the same folder, which is
-/// renamed over `path` only when `body` returns and the stream is flushed without error.
+/// renamed over `path` only when `body` returns and the file is flushed and fsynced without
+/// error (the folder is fsynced after the rename where the file system allows). On any failure
+/// the temporary file is removed and `path` is left as it was.
 void write_file_atomic(const std::filesystem::path& path,
                        const std::function<void(std::ostream&)>& body);
 

@@ -9,7 +9,9 @@
 namespace medax {
 
 struct RunOptions {
-  std::filesystem::path out_dir;  ///< created if missing
+  /// The run folder: missing, empty, or a previous run folder (replaced whole); any other
+  /// non-empty folder is refused. The folder containing it must be writable.
+  std::filesystem::path out_dir;
   bool quiet = false;             ///< no log lines on stderr
 };
 
@@ -26,13 +28,16 @@ struct RunResult {
   std::string error;
   bool wrote_log = false;    ///< false when the run folder or its log could not be made
   int signal = 0;            ///< SIGINT or SIGTERM when the user stopped the run, else 0
-  std::filesystem::path out_dir;
+  std::filesystem::path out_dir;  ///< the run folder; the staging folder if it could not be published
   std::vector<StageTiming> timings;  ///< one per stage that ran
 };
 
 /// Runs every stage in order, writing config.resolved.yaml, log.txt, metrics.json,
-/// timings.json and the configured outputs. A stage that throws stops the run; the outputs of
-/// the stages completed before it are still written.
+/// timings.json, the configured outputs and last run.json (status ok|failed|interrupted). A
+/// stage that throws stops the run; the outputs of the stages completed before it are still
+/// written. Everything goes into `<out_dir>.partial-<pid>`, renamed over out_dir when the run
+/// ends (ok, failed or interrupted); staging folders of killed runs into out_dir are removed
+/// and named in the log (docs/pipeline-format.md, "What a run folder guarantees").
 RunResult run_pipeline(const PipelineConfig& config, const RunOptions& options);
 
 }  // namespace medax

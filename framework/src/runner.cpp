@@ -68,10 +68,9 @@ struct RunFolder {
 };
 
 /// `path` without a trailing separator, "." or "..", so that it has a file name.
+/// Absolute, so that it has a parent folder for the staging folder.
 fs::path plain_path(const fs::path& path) {
-  fs::path p = path.lexically_normal();
-  if (p.has_relative_path() && p.filename().empty()) p = p.parent_path();
-  if (p.filename() == "." || p.filename() == ".." || p.empty()) p = fs::absolute(p).lexically_normal();
+  fs::path p = fs::absolute(path).lexically_normal();
   if (p.has_relative_path() && p.filename().empty()) p = p.parent_path();
   return p;
 }

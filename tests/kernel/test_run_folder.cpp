@@ -230,6 +230,25 @@ TEST_CASE("a run into a folder that a live run is writing is refused", "[runner]
   CHECK(read_text(root / staging / "log.txt") == "a run still going\n");
 }
 
+TEST_CASE("a relative run folder is staged and published beside itself", "[runner][run_folder]") {
+  const auto root = scratch_dir("run_folder_relative");
+  const auto config = load_pipeline(write_text(root / "pipeline.yaml", kFull), medax::test::good_registry());
+  const fs::path before = fs::current_path();
+  fs::current_path(root);
+  RunOptions options;
+  options.out_dir = "run";  // no parent in the path itself
+  options.quiet = true;
+  const RunResult first = run_pipeline(config, options);
+  options.out_dir = "run/";  // a trailing separator names the same folder
+  const RunResult second = run_pipeline(config, options);
+  fs::current_path(before);
+  INFO(first.error << " / " << second.error);
+  CHECK(first.ok);
+  CHECK(second.ok);
+  CHECK(read_json(root / "run" / "run.json")["status"] == "ok");
+  check_no_leftovers(root, root / "run");
+}
+
 // Last in this file: the interrupt flag stays raised for the rest of the process (ctest runs
 // each test case in a process of its own).
 TEST_CASE("an interrupted run is published, marked interrupted", "[runner][run_folder]") {

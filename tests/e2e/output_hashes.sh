@@ -19,8 +19,10 @@ for mesh in "${meshes[@]}"; do
   out=$work/$pipeline-$name
   "$medax" run "$source/pipelines/$pipeline.yaml" --input "$mesh" --out "$out" --quiet > /dev/null \
     || { echo "output_hashes: $pipeline on $name failed (see $out/log.txt)" >&2; exit 1; }
-  # Every output but the log, the timings and the resolved config (which records paths).
-  (cd "$work" && find "$pipeline-$name" -type f ! -name log.txt ! -name timings.json ! -name config.resolved.yaml \
+  # Every output but the log, the timings, the completion record (times) and the resolved
+  # config (which records paths).
+  (cd "$work" && find "$pipeline-$name" -type f ! -name log.txt ! -name timings.json ! -name run.json \
+     ! -name config.resolved.yaml \
      | LC_ALL=C sort | xargs sha256sum) >> "$actual"
 done
 

@@ -16,6 +16,7 @@ using medax::test::plugin_dir;
 using medax::test::read_text;
 using medax::test::run_medax;
 using medax::test::scratch_dir;
+using medax::test::spawn_medax;
 using medax::test::write_text;
 
 namespace fs = std::filesystem;
@@ -34,26 +35,6 @@ std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 void check_clean_error(const medax::test::Output& r) {
   CHECK_THAT(r.err, !Catch::Contains("terminate called"));
   CHECK_THAT(r.err, Catch::StartsWith("error: "));
-}
-
-/// Starts `medax ARGS...` in the background (stdout and stderr into `dir`); returns its pid.
-pid_t spawn_medax(const std::vector<std::string>& args, const std::string& plugin_path, const fs::path& dir) {
-  const std::string binary = (fs::path(MEDAX_BINARY_DIR) / "bin" / "medax").string();
-  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    ::setenv("MEDAX_PLUGIN_PATH", plugin_path.c_str(), 1);
-    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) ::_exit(127);
-    std::vector<char*> argv{const_cast<char*>(binary.c_str())};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(binary.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
 }
 
 /// Waits until `file` contains `text` (the run reached that point), at most `limit`.

@@ -19,6 +19,7 @@ using medax::test::plugin_dir;
 using medax::test::read_text;
 using medax::test::run_medax;
 using medax::test::scratch_dir;
+using medax::test::spawn_medax;
 using medax::test::write_text;
 
 namespace fs = std::filesystem;
@@ -58,26 +59,6 @@ std::vector<std::string> csv_column(const fs::path& csv, const std::string& name
   std::vector<std::string> values;
   for (std::size_t i = 1; i < lines.size(); ++i) values.push_back(column(header, csv_cells(lines[i]), name));
   return values;
-}
-
-/// Starts `medax ARGS...` in the background (stdout and stderr into `dir`); returns its pid.
-pid_t spawn_medax(const std::vector<std::string>& args, const fs::path& dir) {
-  const std::string binary = (fs::path(MEDAX_BINARY_DIR) / "bin" / "medax").string();
-  const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    ::setenv("MEDAX_PLUGIN_PATH", kPlugins.c_str(), 1);
-    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0) ::_exit(127);
-    std::vector<char*> argv{const_cast<char*>(binary.c_str())};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(binary.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
 }
 
 /// Waits until the log of job `name` contains `text`: in its folder or, while the run writes
@@ -344,7 +325,7 @@ TEST_CASE("SIGTERM or SIGINT of a sweep stops its jobs, records them and writes 
                                   "stages:\n  - plugin: test_centroid\n  - {plugin: test_sleep, id: nap}\n");
       const fs::path out = dir / "out";
       const std::vector<std::string> jobs{"0001-cube-seconds=1", "0002-cube-seconds=600"};
-      const pid_t sweep = spawn_medax({"run", file.string(), "-j", "2", "--out", out.string()}, dir);
+      const pid_t sweep = spawn_medax({"run", file.string(), "-j", "2", "--out", out.string()}, kPlugins, dir);
       bool started = true;
       for (const std::string& job : jobs)
         started = started && wait_for_job_log(out / "jobs", job, "read ", std::chrono::seconds(60));

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sys/wait.h>
 
+using medax::test::cube_pipeline;
 using medax::test::data_file;
 using medax::test::run_medax;
 using medax::test::plugin_dir;
@@ -16,11 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kGood = plugin_dir("good").string();
-
-std::string pipeline(const std::string& stages) {
-  return "input: " + data_file("cube.off") + "\nseed: 3\nstages:\n" + stages;
-}
+const std::string& kGood = medax::test::good_plugins();
 
 }  // namespace
 
@@ -71,12 +68,12 @@ TEST_CASE("medax describe prints every parameter with type default and range", "
 
 TEST_CASE("medax validate accepts a good pipeline and rejects a bad one with file:line:col", "[cli]") {
   const auto dir = scratch_dir("cli_validate");
-  const auto good = write_text(dir / "good.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_count\n"));
+  const auto good = write_text(dir / "good.yaml", cube_pipeline("  - plugin: test_centroid\n  - plugin: test_count\n"));
   const auto ok = run_medax("validate '" + good.string() + "'", kGood, dir);
   CHECK(ok.code == 0);
   CHECK_THAT(ok.out, Catch::Contains("valid (2 stages: test_centroid -> test_count)"));
 
-  const auto bad = write_text(dir / "bad.yaml", pipeline("  - plugin: test_centriod\n"));
+  const auto bad = write_text(dir / "bad.yaml", cube_pipeline("  - plugin: test_centriod\n"));
   const auto r = run_medax("validate '" + bad.string() + "'", kGood, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains(bad.string() + ":4:13: error: unknown plugin 'test_centriod'"));
@@ -89,7 +86,7 @@ TEST_CASE("medax validate accepts a good pipeline and rejects a bad one with fil
 
 TEST_CASE("medax run writes the run folder and exits 0", "[cli]") {
   const auto dir = scratch_dir("cli_run");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_scale\n  - plugin: test_centroid\n"
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_scale\n  - plugin: test_centroid\n"
                                                         "  - plugin: test_count\n"));
   const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() +
                            "' --set test_scale.factor=4 --quiet",
@@ -105,7 +102,7 @@ TEST_CASE("medax run writes the run folder and exits 0", "[cli]") {
 
 TEST_CASE("medax run with a failing stage exits 1 naming the stage", "[cli]") {
   const auto dir = scratch_dir("cli_run_fail");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_fail\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n  - plugin: test_fail\n"));
   const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() + "' --quiet", kGood, dir);
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::Contains("error: test_fail: test_fail failed on purpose"));
@@ -114,7 +111,7 @@ TEST_CASE("medax run with a failing stage exits 1 naming the stage", "[cli]") {
 
 TEST_CASE("medax run of an invalid pipeline exits 2 and runs nothing", "[cli]") {
   const auto dir = scratch_dir("cli_run_invalid");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_count\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_count\n"));
   const auto r = run_medax("run '" + file.string() + "' --out '" + (dir / "run").string() + "'", kGood, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains(file.string() + ":4:5: error:"));

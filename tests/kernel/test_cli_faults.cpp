@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <thread>
 
+using medax::test::cube_pipeline;
 using medax::test::data_file;
 using medax::test::plugin_dir;
 using medax::test::read_text;
@@ -23,11 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kGood = plugin_dir("good").string();
-
-std::string pipeline(const std::string& stages) {
-  return "input: " + data_file("cube.off") + "\nseed: 3\nstages:\n" + stages;
-}
+const std::string& kGood = medax::test::good_plugins();
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -50,7 +47,7 @@ bool wait_for_text(const fs::path& file, const std::string& text, std::chrono::s
 /// Runs a pipeline whose second stage sleeps, sends `sig` once the input was read (the signal
 /// handler is installed by then), and returns the exit status.
 int run_and_signal(int sig, const fs::path& dir) {
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_sleep\n"
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n  - plugin: test_sleep\n"
                                                         "    params: {seconds: 2}\n  - plugin: test_count\n"));
   const pid_t pid = spawn_medax({"run", file.string(), "--out", (dir / "run").string(), "--quiet"},
                                 plugin_dir("sweep").string() + ":" + kGood, dir);
@@ -69,7 +66,7 @@ int run_and_signal(int sig, const fs::path& dir) {
 
 TEST_CASE("medax run with --out an existing regular file exits 1 naming it, the file untouched", "[cli][faults]") {
   const auto dir = scratch_dir("cli_faults_out_file");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n"));
   const auto taken = write_text(dir / "taken", "keep me\n");
   const auto r = run_medax("run " + quoted(file) + " --out " + quoted(taken) + " --quiet", kGood, dir);
   CHECK(r.code == 1);
@@ -81,7 +78,7 @@ TEST_CASE("medax run with --out an existing regular file exits 1 naming it, the 
 
 TEST_CASE("medax run with --out under a regular file exits 1 naming the file", "[cli][faults]") {
   const auto dir = scratch_dir("cli_faults_out_under_file");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n"));
   const auto taken = write_text(dir / "taken", "x\n");
   for (const fs::path out : {taken / "run", taken / "a" / "b"}) {
     const auto r = run_medax("run " + quoted(file) + " --out " + quoted(out) + " --quiet", kGood, dir);
@@ -94,7 +91,7 @@ TEST_CASE("medax run with --out under a regular file exits 1 naming the file", "
 
 TEST_CASE("medax run into a folder it cannot write exits 1 with the reason", "[cli][faults]") {
   const auto dir = scratch_dir("cli_faults_out_readonly");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n"));
   if (::geteuid() != 0) {
     // Permission bits stop an ordinary user.
     const auto locked = dir / "locked";
@@ -132,7 +129,7 @@ TEST_CASE("medax run, validate and bench of a folder as the pipeline exit 2 nami
 TEST_CASE("an error escaping a command is printed by main's last catch, exit 1", "[cli][faults]") {
   // A sweep into a regular file: thrown while creating the sweep's folders.
   const auto dir = scratch_dir("cli_faults_last_catch");
-  const auto file = write_text(dir / "s.yaml", pipeline("  - plugin: test_centroid\n  - plugin: test_sleep\n") +
+  const auto file = write_text(dir / "s.yaml", cube_pipeline("  - plugin: test_centroid\n  - plugin: test_sleep\n") +
                                                    "sweep:\n  test_sleep.seconds: [0, 0.01]\n");
   const auto taken = write_text(dir / "taken", "x\n");
   const auto r = run_medax("run " + quoted(file) + " --out " + quoted(taken) + " --quiet",
@@ -143,7 +140,7 @@ TEST_CASE("an error escaping a command is printed by main's last catch, exit 1",
 
 TEST_CASE("medax usage errors exit 2, --help and --version exit 0", "[cli][faults]") {
   const auto dir = scratch_dir("cli_faults_usage");
-  const auto file = write_text(dir / "p.yaml", pipeline("  - plugin: test_centroid\n"));
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n"));
   const std::vector<std::string> usage_errors{"run " + quoted(file) + " --bogus", "run",
                                               "run " + quoted(file) + " --jobs", "run " + quoted(file) + " --jobs 0",
                                               "", "frobnicate"};

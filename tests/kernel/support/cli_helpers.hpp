@@ -12,6 +12,17 @@
 
 namespace medax::test {
 
+/// The good test package's folder, for MEDAX_PLUGIN_PATH.
+inline const std::string& good_plugins() {
+  static const std::string path = plugin_dir("good").string();
+  return path;
+}
+
+/// A pipeline on the cube with seed 3 and the given `stages:` lines.
+inline std::string cube_pipeline(const std::string& stages) {
+  return "input: " + data_file("cube.off") + "\nseed: 3\nstages:\n" + stages;
+}
+
 struct Output {
   int code = -1;
   std::string out, err;

@@ -221,12 +221,9 @@ void DurixStage::declare(ParamBinder& p) {
 
 void DurixStage::check_params() const {
   if (oracle_.empty()) return;  // filled in by the pipeline, or by the caller before extract()
-  try {
-    oracle_.get();
-  } catch (const std::invalid_argument&) {
+  if (!oracle_.find())
     throw std::invalid_argument("parameter 'oracle' must be a durix oracle such as `durix_epsilon`, not '" +
                                 oracle_.plugin() + "'");
-  }
 }
 
 void DurixStage::check(const Shape& shape) const {

@@ -133,6 +133,7 @@ TEST_CASE("configure writes each given value into its field and leaves the other
 TEST_CASE("a stage slot holds the nested stage, typed by its role", "[params]") {
   Declaring stage;
   CHECK(stage.oracle.empty());
+  CHECK(stage.oracle.find() == nullptr);
   CHECK_THROWS(stage.oracle.get());
   auto ref = std::make_shared<StageRef>();
   ref->plugin = "probe";
@@ -143,8 +144,10 @@ TEST_CASE("a stage slot holds the nested stage, typed by its role", "[params]") 
   CHECK(&stage.oracle.get() == ref->instance.get());
   CHECK(stage.oracle.plugin() == "probe");
 
+  CHECK(stage.oracle.find() == ref->instance.get());
   StageSlot<EvaluationStage> wrong;
   wrong.set(ref);
+  CHECK(wrong.find() == nullptr);
   CHECK_THROWS_WITH(wrong.get(), Catch::Contains("'probe' is not of the kind"));
 }
 

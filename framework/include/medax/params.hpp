@@ -87,6 +87,8 @@ template <typename StageT>
 class StageSlot {
  public:
   bool empty() const { return !ref_; }
+  /// The nested stage, or nullptr when the slot is empty or holds a stage of another kind.
+  StageT* find() const { return ref_ ? dynamic_cast<StageT*>(ref_->instance.get()) : nullptr; }
   StageT& get() const;
   StageT* operator->() const { return &get(); }
   const std::string& plugin() const;
@@ -155,7 +157,7 @@ ParamType param_type_of() {
 template <typename StageT>
 StageT& StageSlot<StageT>::get() const {
   if (!ref_ || !ref_->instance) detail::throw_empty_slot();
-  auto* typed = dynamic_cast<StageT*>(ref_->instance.get());
+  StageT* typed = find();
   if (!typed) detail::throw_wrong_stage(ref_->plugin);
   return *typed;
 }

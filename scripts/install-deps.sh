@@ -6,10 +6,11 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build ccache git pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libtbb-dev libeigen3-dev
-  libtet1.5-dev libopenmesh-dev
+  libtet1.5-dev libopenmesh-dev coinor-libcbc-dev libnlopt-cxx-dev
   libyaml-cpp-dev libboost-dev libboost-filesystem-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
   catch2 libbenchmark-dev gnuplot-nox
+  clang libclang-rt-14-dev
 )
 
 missing=()

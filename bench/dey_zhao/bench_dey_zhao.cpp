@@ -39,12 +39,14 @@ const SurfaceMesh& koala() {
   return mesh;
 }
 
-/// Poisson-disk samples of koala (cached beside the binary: 1M samples take a while to make).
+/// Poisson-disk samples of koala (cached in the build folder's bench-cache/: 1M samples take a while to make).
 const OrientedSamples& samples(std::size_t n) {
   static std::map<std::size_t, OrientedSamples> cache;
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
-  const std::filesystem::path file = "bench_dey_zhao_koala_" + std::to_string(n) + ".bin";
+  std::filesystem::create_directories(MEDAX_BENCH_CACHE_DIR);
+  const std::filesystem::path file =
+      std::filesystem::path(MEDAX_BENCH_CACHE_DIR) / ("bench_dey_zhao_koala_" + std::to_string(n) + ".bin");
   OrientedSamples s;
   std::ifstream in(file, std::ios::binary);
   std::uint64_t count = 0;

@@ -252,7 +252,7 @@ void MedialCurvesStage::connect(const Shape&, MedialComplex& medial, Context& ct
 
 StageInfo EtSkeletonStage::describe() {
   return {"et_skeleton",
-          "Topology-preserving skeleton of sheets (ET >= theta2) and curves (ET_C >= theta1) (Yan et al. 2016, §7.3), "
+          "Topology-preserving skeleton of sheets (ET > theta2) and curves (ET_C > theta1) (Yan et al. 2016, §7.3), "
           "from the burn of erosion_thickness",
           kDoc};
 }

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -119,6 +120,14 @@ std::optional<SweepAxis> named_axis(const YAML::Node& key, const YAML::Node& val
   return axis;
 }
 
+/// The STAGE.PARAM (or STAGE.plugin) keys an axis sets: its own key, or every key its bundles set.
+std::set<std::string> keys_set_by(const SweepAxis& axis) {
+  std::set<std::string> keys;
+  for (const auto& settings : axis.settings)
+    for (const std::string& s : settings) keys.insert(s.substr(0, s.find('=')));
+  return keys;
+}
+
 /// FNV-1a, 64 bits, as 16 hex digits: an identity for resume, not a security measure.
 std::string config_hash(const std::string& text) {
   std::uint64_t h = 0xCBF29CE484222325ull;
@@ -169,15 +178,22 @@ SweepConfig load_sweep(const fs::path& pipeline) {
 
   if (const YAML::Node sweep = root["sweep"]) {
     if (!sweep.IsMap()) diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin, or a name) to a list of values");
-    else
+    else {
+      std::map<std::string, std::string> axis_setting;  // STAGE.PARAM -> the sweep key that sets it
       for (const auto& kv : sweep) {
         std::optional<SweepAxis> axis = kv.first.Scalar().find('.') == std::string::npos
                                             ? named_axis(kv.first, kv.second, diag)
                                             : plain_axis(kv.first.Scalar(), kv.second);
         if (!axis) continue;
         if (axis->values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", axis->key));
+        for (const std::string& key : keys_set_by(*axis))
+          if (const auto [it, fresh] = axis_setting.emplace(key, axis->key); !fresh && it->second != axis->key)
+            diag.error(kv.first, fmt::format("sweep key '{}' sets {}, which '{}' sets too: the job's folder and "
+                                             "results would name one value while the other runs; set it in one place",
+                                             axis->key, key, it->second));
         config.axes.push_back(std::move(*axis));
       }
+    }
   }
 
   if (const YAML::Node plots = root["plots"]) {

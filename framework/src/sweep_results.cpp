@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include "json_file.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -100,7 +101,20 @@ std::vector<PlotSpec> default_plots(const SweepConfig& config, const std::vector
   return plots;
 }
 
-void draw(const PlotSpec& plot, const std::vector<Row>& rows, const fs::path& plot_dir) {
+/// Why no row gives a point for `column` (empty when some row does): no such column, or text only.
+std::string unplottable(const std::string& column, const std::vector<Row>& rows,
+                        const std::vector<std::string>& columns) {
+  if (std::find(columns.begin(), columns.end(), column) == columns.end())
+    return fmt::format("results.csv has no column '{}'", column);
+  for (const Row& row : rows) {
+    const auto it = row.find(column);
+    if (it != row.end() && is_number(it->second)) return {};
+  }
+  return fmt::format("'{}' holds no numbers (a text column can be a plot's `series:`)", column);
+}
+
+void draw(const PlotSpec& plot, const std::vector<Row>& rows, const std::vector<std::string>& columns,
+          const fs::path& plot_dir) {
   std::map<std::string, std::vector<std::pair<double, double>>> series;
   for (const Row& row : rows) {
     const auto x = row.find(plot.x), y = row.find(plot.y);
@@ -108,7 +122,13 @@ void draw(const PlotSpec& plot, const std::vector<Row>& rows, const fs::path& pl
     const auto s = row.find(plot.series);
     series[s == row.end() ? "all" : s->second].emplace_back(std::stod(x->second), std::stod(y->second));
   }
-  if (series.empty()) return;
+  if (series.empty()) {
+    std::string why = unplottable(plot.x, rows, columns);
+    if (why.empty()) why = unplottable(plot.y, rows, columns);
+    if (why.empty()) why = "no row has numbers in both columns";
+    fmt::print(stderr, "warning: plot of {} against {} not drawn: {}\n", plot.y, plot.x, why);
+    return;
+  }
   fs::create_directories(plot_dir);
   const std::string stem = fmt::format("{}_vs_{}", plot.y, plot.x);
   std::string data_files;
@@ -180,7 +200,8 @@ std::size_t write_sweep_results(const SweepConfig& config, const std::vector<Swe
     }
   });
   const std::vector<PlotSpec> plots = config.plots.empty() ? default_plots(config, columns) : config.plots;
-  for (const PlotSpec& plot : plots) draw(plot, rows, out_dir / "plots");
+  fs::remove_all(out_dir / "plots");  // plots of entries removed from `plots:` must not linger
+  for (const PlotSpec& plot : plots) draw(plot, rows, columns, out_dir / "plots");
   return rows.size();
 }
 

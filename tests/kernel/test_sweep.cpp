@@ -365,3 +365,47 @@ TEST_CASE("SIGTERM or SIGINT of a sweep stops its jobs, records them and writes 
     }
   }
 }
+
+TEST_CASE("a bundle that sets a key another sweep key sets is refused", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_conflict");
+  // Without the check the bundle's factor ran while the job folder and results.csv named the swept one.
+  const fs::path file = write_text(dir / "sweep.yaml", "input: " + data_file("cube.off") +
+                                                           "\nsweep:\n  scale.factor: [1, 2]\n  method:\n"
+                                                           "    - {name: big, scale.factor: 3}\n"
+                                                           "stages:\n  - {plugin: test_scale, id: scale}\n");
+  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains("sweep.yaml:4:3") &&
+                                                 Catch::Contains("sweep key 'method' sets scale.factor, which "
+                                                                 "'scale.factor' sets too"));
+  write_text(file, "input: " + data_file("cube.off") + "\nsweep:\n  scale.factor: [1, 2]\n  method:\n"
+                   "    - {name: big, c.plugin: test_count}\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n"
+                   "  - {plugin: test_count, id: c}\n");
+  CHECK(medax::expand_sweep(medax::load_sweep(file)).size() == 2);
+}
+
+TEST_CASE("a plot that cannot be drawn is named, and plots of removed entries go", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_plot_warnings");
+  const std::string head = "name: plots\ninput: " + data_file("cube.off") +
+                           "\nsweep:\n  scale.factor: [0.5, 1]\n  method:\n    - {name: a, c.plugin: test_count}\n";
+  const std::string stages =
+      "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n  - {plugin: test_count, id: c}\n";
+  const fs::path file = write_text(dir / "sweep.yaml", head +
+                                                           "plots:\n  - {x: method, y: c.vertices}\n"
+                                                           "  - {x: scale.factor, y: c.nothing}\n"
+                                                           "  - {x: scale.factor, y: c.vertices}\n" + stages);
+  const std::string out = (dir / "out").string();
+  auto r = run_medax("run '" + file.string() + "' --out '" + out + "'", kPlugins, dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.err, Catch::Contains("plot of c.vertices against method not drawn: 'method' holds no numbers"));
+  CHECK_THAT(r.err, Catch::Contains("plot of c.nothing against scale.factor not drawn: results.csv has no column "
+                                    "'c.nothing'"));
+  const fs::path kept = dir / "out" / "plots" / "c.vertices_vs_scale.factor.svg";
+  REQUIRE(fs::exists(kept));
+
+  write_text(file, head + "plots:\n  - {x: scale.factor, y: time.total}\n" + stages);
+  r = run_medax("run '" + file.string() + "' --out '" + out + "' --results-only", kPlugins, dir);
+  REQUIRE(r.code == 0);
+  CHECK(fs::exists(dir / "out" / "plots" / "time.total_vs_scale.factor.svg"));
+  CHECK_FALSE(fs::exists(kept));
+}

@@ -74,4 +74,15 @@ m=$work/run-extract/metrics.json
 grep -q '"hello": {' "$m" || fail "no metrics of stage 'hello' in $m"
 # The centroid sphere of the cube has radius √3: volume 4π√3 = 21.765592...
 case "$(metric "$m" sphere_volume_sum)" in 21.7655923*) ;; *) fail "extract.yaml: wrong sphere_volume_sum in $m";; esac
+# 3. The example built against the build tree itself (-Dmedax_DIR), without installing, and
+#    loaded by the build tree's medax.
+tree_example=$work/example-build-tree
+cmake -S "$source/examples/hello_plugin" -B "$tree_example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -Dmedax_DIR="$build" $launcher > "$work/configure-tree.log" 2>&1 \
+  || { cat "$work/configure-tree.log"; fail "configuring the example against the build tree $build failed"; }
+cmake --build "$tree_example" -j2 > "$work/build-tree.log" 2>&1 \
+  || { cat "$work/build-tree.log"; fail "building the example against the build tree failed"; }
+MEDAX_PLUGIN_PATH=$tree_example "$build/bin/medax" run "$source/examples/hello_plugin/hello.yaml" \
+  --out "$work/run-hello-tree" --quiet > /dev/null || fail "the build tree's medax cannot run the example built against it"
+[ "$(metric "$work/run-hello-tree/metrics.json" mesh_volume)" = "8.0" ] || fail "build-tree example: mesh_volume is not 8.0"
 echo "install_example: ok"

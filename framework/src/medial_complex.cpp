@@ -139,6 +139,13 @@ void MedialComplex::validate() const {
 void MedialComplex::transform(const Similarity& s) {
   for (Vec3& c : centres) c = s.apply(c);
   for (double& r : radii) r = s.apply_length(r);
+  for (ElementProperties* props : {&vertex_props, &edge_props, &face_props})
+    for (auto& [name, column] : props->fields.all()) {
+      const int k = props->fields.length_power(name);
+      if (k == 0) continue;
+      const double factor = std::pow(s.scale, k);
+      for (double& value : column) value *= factor;
+    }
 }
 
 }  // namespace medax

@@ -23,13 +23,13 @@ namespace medax::et {
 
 // ---- columns -----------------------------------------------------------------------------------
 
-inline const Property<double> kBt{Element::Vertex, "bt"};          ///< burn time (erosion_thickness, et_skeleton)
-inline const Property<double> kEt{Element::Vertex, "et"};          ///< ET = BT - R
-inline const Property<double> kFaceEt{Element::Face, "et"};        ///< mean ET of the corners / the wedge priority
-inline const Property<double> kBtM{Element::Vertex, "bt_m"};       ///< BT of the medial axis at a curve vertex
-inline const Property<double> kBtC{Element::Vertex, "bt_c"};       ///< BT of the 1D burn on the curves
-inline const Property<double> kEtC{Element::Vertex, "et_c"};       ///< ET_C = BT_C - BT_M
-inline const Property<double> kEdgeEtC{Element::Edge, "et_c"};     ///< mean ET_C of the edge's ends
+inline const Property<double> kBt{Element::Vertex, "bt", 1};          ///< burn time (erosion_thickness, et_skeleton)
+inline const Property<double> kEt{Element::Vertex, "et", 1};          ///< ET = BT - R
+inline const Property<double> kFaceEt{Element::Face, "et", 1};        ///< mean ET of the corners / the wedge priority
+inline const Property<double> kBtM{Element::Vertex, "bt_m", 1};       ///< BT of the medial axis at a curve vertex
+inline const Property<double> kBtC{Element::Vertex, "bt_c", 1};       ///< BT of the 1D burn on the curves
+inline const Property<double> kEtC{Element::Vertex, "et_c", 1};       ///< ET_C = BT_C - BT_M
+inline const Property<double> kEdgeEtC{Element::Edge, "et_c", 1};     ///< mean ET_C of the edge's ends
 inline const Property<int> kCurveKind{Element::Vertex, "curve_kind"};  ///< what a curve vertex is dual to
 inline const Property<int> kEtPoint{Element::Vertex, "et_point"};      ///< what a skeleton point is
 inline const Property<int> kMedialCurve{Element::Edge, "medial_curve"};  ///< 1 on the medial curves

@@ -151,14 +151,14 @@ void ErosionThicknessStage::measure(const Shape& shape, MedialComplex& medial, C
 
 namespace {
 
-const Property<double> kRadius{Element::Vertex, "radius"};
+const Property<double> kRadius{Element::Vertex, "medial_radius", 1};
 const Property<double> kObjectAngle{Element::Vertex, "object_angle"};
-const Property<double> kCircumradius{Element::Vertex, "circumradius"};
+const Property<double> kCircumradius{Element::Vertex, "circumradius", 1};
 
 /// Adds vertex field `p` and the face field of the same name (the mean of its corners).
 void add_with_face_mean(MedialComplex& medial, const Property<double>& p, const std::vector<double>& values) {
   medial.add(p) = values;
-  auto& f = medial.add(Property<double>{Element::Face, p.name});
+  auto& f = medial.add(Property<double>{Element::Face, p.name, p.length_power});
   for (std::size_t i = 0; i < medial.faces.size(); ++i)
     f[i] = (values[medial.faces[i][0]] + values[medial.faces[i][1]] + values[medial.faces[i][2]]) / 3;
 }
@@ -166,7 +166,7 @@ void add_with_face_mean(MedialComplex& medial, const Property<double>& p, const 
 }  // namespace
 
 StageInfo RadiusMeasureStage::describe() {
-  return {"radius_measure", "The medial radius R as a significance field `radius` (vertex; face mean)", kDoc};
+  return {"radius_measure", "The medial radius R as a significance field `medial_radius` (vertex; face mean)", kDoc};
 }
 
 void RadiusMeasureStage::measure(const Shape&, MedialComplex& medial, Context& ctx) {

@@ -61,10 +61,10 @@ inline const std::vector<std::pair<std::string, Correction>> kCorrections{{"alwa
 inline const std::vector<std::pair<std::string, UpdateScope>> kUpdateScopes{{"local", UpdateScope::Local},
                                                                             {"full", UpdateScope::Full}};
 
-/// The vertex columns of VmasSolver::complex(): the cluster error E(C) (eq. 12), the cluster
-/// area A(C), and the stable sphere id.
-inline const Property<double> kVmasError{Element::Vertex, "vmas_error"};
-inline const Property<double> kVmasArea{Element::Vertex, "vmas_area"};
+/// The vertex columns of VmasSolver::complex(): the cluster error E(C) (eq. 12, an area-weighted
+/// mean of squared distances: length²), the cluster area A(C), and the stable sphere id.
+inline const Property<double> kVmasError{Element::Vertex, "vmas_error", 2};
+inline const Property<double> kVmasArea{Element::Vertex, "vmas_area", 2};
 inline const Property<int> kVmasId{Element::Vertex, "vmas_id"};
 
 struct VmasOptions {

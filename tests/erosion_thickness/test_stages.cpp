@@ -393,7 +393,7 @@ TEST_CASE("Local measures on a Voronoi complex: generators and nearest-point fal
     same += std::abs(a1[v] - a2[v]) < 1e-9 && std::abs(l1[v] - l2[v]) < 1e-9;
   }
   CHECK(same >= 0.99 * with.num_vertices());
-  CHECK(with.vertex_props.fields.get("radius") == with.radii);
+  CHECK(with.vertex_props.fields.get("medial_radius") == with.radii);
   CHECK(with.face_props.fields.get("object_angle").size() == with.faces.size());
   // No generators and no shape: a clear refusal.
   CHECK_THROWS_AS(configured<ObjectAngleStage>().measure(Shape{}, without, ctx), std::invalid_argument);

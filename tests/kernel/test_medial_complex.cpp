@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <utility>
+
 using namespace medax;
 
 namespace {
@@ -139,6 +141,26 @@ TEST_CASE("transform maps centres and scales radii", "[medial][geometry]") {
   CHECK(m.centres[3] == Vec3(7, 17, 0.5));
   CHECK(m.radii[3] == 8.0);
   CHECK(m.size(Element::Face) == 2);
+}
+
+TEST_CASE("transform scales each field by the scale to its length power, and keeps labels", "[medial][geometry]") {
+  const Property<double> distance{Element::Vertex, "burn", 1}, area{Element::Face, "area", 2},
+      angle{Element::Vertex, "angle"};
+  const Property<int> label{Element::Vertex, "sheet"};
+  MedialComplex m = two_triangles();
+  m.add(distance, 1.5);
+  m.add(area, 3.0);
+  m.add(angle, 0.25);
+  m.add(label, 7);
+  const MedialComplex kept = m.subcomplex({0, 1, 2}, {}, {0});  // a selection keeps the powers
+  for (const MedialComplex* c : {&std::as_const(m), &kept}) {
+    MedialComplex t = *c;
+    t.transform(Similarity{2.0, Vec3(1, -1, 0.5)});
+    CHECK(t.get(distance)[0] == 3.0);
+    CHECK(t.get(area)[0] == 12.0);
+    CHECK(t.get(angle)[0] == 0.25);
+    CHECK(t.get(label)[0] == 7);
+  }
 }
 
 TEST_CASE("Similarity composition applies the inner map first and inverse undoes it", "[geometry]") {

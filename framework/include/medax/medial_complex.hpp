@@ -41,7 +41,7 @@ struct MedialComplex {
   /// Adds a column for `p`, every row set to `init`, and returns it (replaces one of that name).
   template <typename T>
   std::vector<T>& add(const Property<T>& p, T init = T{}) {
-    return props(p.element).template map<T>().add(p.name, size(p.element), init);
+    return props(p.element).template map<T>().add(p.name, size(p.element), init, p.length_power);
   }
   template <typename T>
   bool has(const Property<T>& p) const {
@@ -73,7 +73,8 @@ struct MedialComplex {
   /// a property column of the wrong length, non-finite centre, negative radius.
   void validate() const;
 
-  /// Applies a similarity to every centre and radius.
+  /// Applies a similarity to every centre and radius, and to every field that scales with length
+  /// (a field scaling as length^k is multiplied by s.scale^k; see Property::length_power).
   void transform(const Similarity& s);
 };
 

@@ -18,13 +18,18 @@ enum class Element { Vertex, Edge, Face };
 /// In a row selection (PropertyMap::select), a new row set to the column's initial value.
 inline constexpr Index kFreshRow = static_cast<Index>(-1);
 
-/// A typed handle to one column: which elements, which name. T is double (a field) or int (a
-/// label). Declare it once (`inline const Property<double> kEt{Element::Vertex, "et"};`) and use
-/// it everywhere, instead of repeating the string.
+/// A typed handle to one column: which elements, which name, and how its values scale with
+/// length. T is double (a field) or int (a label). Declare it once
+/// (`inline const Property<double> kEt{Element::Vertex, "et", 1};`) and use it everywhere,
+/// instead of repeating the string.
 template <typename T>
 struct Property {
   Element element;
   std::string name;
+  /// The field scales as length^k: 1 for a distance (a radius, a burn time), 2 for an area, 0 for
+  /// angles, ratios, counts and labels. Outputs written in the input's frame scale it by s^k, as
+  /// they map the geometry back (MedialComplex::transform).
+  int length_power = 0;
 };
 
 template <typename T>
@@ -32,9 +37,11 @@ class PropertyMap {
  public:
   using Column = std::vector<T>;
 
-  /// Adds (or replaces) a property with `size` values set to `init`; returns it for filling.
-  Column& add(const std::string& name, std::size_t size, T init = T{}) {
+  /// Adds (or replaces) a property with `size` values set to `init`, scaling as length^length_power
+  /// (see Property); returns it for filling.
+  Column& add(const std::string& name, std::size_t size, T init = T{}, int length_power = 0) {
     inits_[name] = init;
+    powers_[name] = length_power;
     auto& column = columns_[name];
     column.assign(size, init);
     return column;
@@ -48,13 +55,20 @@ class PropertyMap {
   Column& get(const std::string& name) {
     return const_cast<Column&>(static_cast<const PropertyMap&>(*this).get(name));
   }
+  /// k when the column scales as length^k (0 when unknown, e.g. a column read from a file).
+  int length_power(const std::string& name) const {
+    auto it = powers_.find(name);
+    return it == powers_.end() ? 0 : it->second;
+  }
   void erase(const std::string& name) {
     columns_.erase(name);
     inits_.erase(name);
+    powers_.erase(name);
   }
   void clear() {
     columns_.clear();
     inits_.clear();
+    powers_.clear();
   }
   bool empty() const { return columns_.empty(); }
   const std::map<std::string, Column>& all() const { return columns_; }
@@ -83,6 +97,7 @@ class PropertyMap {
 
   std::map<std::string, Column> columns_;
   std::map<std::string, T> inits_;
+  std::map<std::string, int> powers_;
 };
 
 /// Scalar fields (significance, distances) and integer labels (sheet id, path type) of one

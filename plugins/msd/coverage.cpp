@@ -1,0 +1,112 @@
+#include "coverage.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace medax::msd {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Triangles = std::vector<K::Triangle_3>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
+
+K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+
+/// cp(x; P): the closest point of the element.
+Vec3 closest_on_element(const Element& element, const Vec3& x) {
+  const K::Point_3 q = point(x);
+  switch (element.kind) {
+    case ElementKind::Vertex:
+      return element.corners[0];
+    case ElementKind::Edge: {
+      const Vec3 &a = element.corners[0], &b = element.corners[1];
+      const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      return a + t * (b - a);
+    }
+    case ElementKind::Triangle:
+      break;
+  }
+  const K::Triangle_3 triangle(point(element.corners[0]), point(element.corners[1]), point(element.corners[2]));
+  return vec(K().construct_projected_point_3_object()(triangle, q));
+}
+
+}  // namespace
+
+struct PrimitiveShape::Impl {
+  Element element;
+  Triangles triangles;
+  AabbTree tree;
+  Eigen::AlignedBox3d box;
+};
+
+PrimitiveShape::PrimitiveShape(const Primitive& primitive) : impl_(std::make_unique<Impl>()) {
+  impl_->element = primitive.element;
+  const std::vector<Vec3> x = primitive_vertices(primitive.shape, primitive.radius);
+  for (const Vec3& v : x) impl_->box.extend(v);
+  impl_->triangles.reserve(primitive.shape.faces.size());
+  for (const Tri& f : primitive.shape.faces) impl_->triangles.emplace_back(point(x[f[0]]), point(x[f[1]]), point(x[f[2]]));
+  impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
+  impl_->tree.build();
+  impl_->tree.accelerate_distance_queries();
+}
+
+PrimitiveShape::~PrimitiveShape() = default;
+PrimitiveShape::PrimitiveShape(PrimitiveShape&&) noexcept = default;
+PrimitiveShape& PrimitiveShape::operator=(PrimitiveShape&&) noexcept = default;
+
+double PrimitiveShape::radial(const Vec3& x) const {
+  const Vec3 p = closest_on_element(impl_->element, x);
+  const double length = (x - p).norm();
+  if (length == 0) return -std::numeric_limits<double>::infinity();  // on the element: inside
+  const Vec3 d = (x - p) / length;
+  const auto hit = impl_->tree.first_intersection(K::Ray_3(point(p), K::Vector_3(d.x(), d.y(), d.z())));
+  if (!hit) return std::numeric_limits<double>::infinity();
+  const K::Point_3* at = boost::get<K::Point_3>(&hit->first);
+  if (!at) return std::numeric_limits<double>::infinity();
+  return length - (vec(*at) - p).norm();
+}
+
+double PrimitiveShape::signed_distance(const Vec3& x) const {
+  const double distance = std::sqrt(impl_->tree.squared_distance(point(x)));
+  return radial(x) < 0 ? -distance : distance;
+}
+
+bool PrimitiveShape::near(const Vec3& x, double margin) const { return impl_->box.exteriorDistance(x) <= margin; }
+
+Coverage coverage(const TargetMesh& target, const std::vector<Primitive>& primitives, const CoverageOptions& options) {
+  std::vector<const Primitive*> fitted;
+  for (const Primitive& p : primitives)
+    if (p.fitted) fitted.push_back(&p);
+  std::vector<std::unique_ptr<PrimitiveShape>> shapes(fitted.size());
+  tbb::parallel_for(std::size_t{0}, fitted.size(),
+                    [&](std::size_t k) { shapes[k] = std::make_unique<PrimitiveShape>(*fitted[k]); });
+  const double delta = options.delta * target.scale();
+  const std::vector<Vec3>& vertices = target.mesh().vertices;
+  Coverage result;
+  result.covered.assign(vertices.size(), 0);
+  tbb::parallel_for(std::size_t{0}, vertices.size(), [&](std::size_t v) {
+    for (const auto& shape : shapes) {
+      if (!shape->near(vertices[v], delta)) continue;
+      const double value = options.test == CoverageTest::Radial ? shape->radial(vertices[v])
+                                                                 : shape->signed_distance(vertices[v]);
+      if (value < delta) {
+        result.covered[v] = 1;
+        break;  // early exit: one covering primitive is enough
+      }
+    }
+  });
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    if (result.covered[v]) result.energy -= target.vertex_areas()[v];
+  return result;
+}
+
+}  // namespace medax::msd

@@ -22,7 +22,7 @@ K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 /// cp(x; P): the closest point of the element.
-Vec3 closest_on_element(const Element& element, const Vec3& x) {
+Vec3 closest_on_element(const SkeletonElement& element, const Vec3& x) {
   const K::Point_3 q = point(x);
   switch (element.kind) {
     case ElementKind::Vertex:
@@ -42,7 +42,7 @@ Vec3 closest_on_element(const Element& element, const Vec3& x) {
 }  // namespace
 
 struct PrimitiveShape::Impl {
-  Element element;
+  SkeletonElement element;
   Triangles triangles;
   AabbTree tree;
   Eigen::AlignedBox3d box;

@@ -102,13 +102,13 @@ std::vector<double> RadiusSolver::fit(double initial_radius, int* solves) {
   return {radius.data(), radius.data() + radius.size()};
 }
 
-double initial_radius(const TargetMesh& target, const Element& element) {
+double initial_radius(const TargetMesh& target, const SkeletonElement& element) {
   double sum = 0;
   for (int k = 0; k < element.corner_count(); ++k) sum += target.distance(element.corners[k]);
   return sum / element.corner_count();
 }
 
-Primitive fit_primitive(const TargetMesh& target, const Element& element, const FitOptions& options) {
+Primitive fit_primitive(const TargetMesh& target, const SkeletonElement& element, const FitOptions& options) {
   Primitive primitive;
   primitive.element = element;
   primitive.initial_radius = initial_radius(target, element);
@@ -130,7 +130,7 @@ Primitive fit_primitive(const TargetMesh& target, const Element& element, const 
   return primitive;
 }
 
-std::vector<Primitive> fit_primitives(const TargetMesh& target, const std::vector<Element>& elements,
+std::vector<Primitive> fit_primitives(const TargetMesh& target, const std::vector<SkeletonElement>& elements,
                                       const FitOptions& options) {
   std::vector<Primitive> primitives(elements.size());
   tbb::parallel_for(std::size_t{0}, elements.size(),

@@ -59,15 +59,15 @@ class RadiusSolver {
 };
 
 /// ρ0 ([C]): distance from S to the vertex, or the mean of the corners' distances.
-double initial_radius(const TargetMesh& target, const Element& element);
+double initial_radius(const TargetMesh& target, const SkeletonElement& element);
 
 /// Fits one primitive. It fails (fitted = false, `failure` set) when the element is degenerate,
 /// touches S, or a direction's ray never leaves S.
-Primitive fit_primitive(const TargetMesh& target, const Element& element, const FitOptions& options = {});
+Primitive fit_primitive(const TargetMesh& target, const SkeletonElement& element, const FitOptions& options = {});
 
 /// Fits every element in parallel; each primitive is independent, so the result does not
 /// depend on the thread count.
-std::vector<Primitive> fit_primitives(const TargetMesh& target, const std::vector<Element>& elements,
+std::vector<Primitive> fit_primitives(const TargetMesh& target, const std::vector<SkeletonElement>& elements,
                                       const FitOptions& options = {});
 
 }  // namespace medax::msd

@@ -16,7 +16,7 @@ namespace medax::msd {
 enum class ElementKind : int { Vertex = 1, Edge = 2, Triangle = 3 };
 
 /// A skeleton element P = cvx(corners): its skeleton vertex ids and their positions.
-struct Element {
+struct SkeletonElement {
   ElementKind kind = ElementKind::Vertex;
   std::array<Index, 3> ids{};     ///< the first corner_count() are used
   std::array<Vec3, 3> corners{};  ///< positions of those ids
@@ -37,7 +37,7 @@ struct PrimitiveTemplate {
 /// A fitted primitive T_P. `fitted` is false when the fitting failed (`failure` says why); the
 /// radii are then empty.
 struct Primitive {
-  Element element;
+  SkeletonElement element;
   PrimitiveTemplate shape;
   double initial_radius = 0;        ///< ρ0
   std::vector<double> max_radius;   ///< ρmax_i: distance from b_i along d_i to where the ray leaves S

@@ -127,7 +127,7 @@ struct Slab {
   int segments = 1;  ///< per side
 };
 
-Slab make_slab(const Element& element, const Builder& builder, std::size_t max_segments) {
+Slab make_slab(const SkeletonElement& element, const Builder& builder, std::size_t max_segments) {
   Slab slab;
   slab.c = element.corners;
   const Vec3 cross = (slab.c[1] - slab.c[0]).cross(slab.c[2] - slab.c[0]);
@@ -195,7 +195,7 @@ Ring add_wall_ring(Builder& builder, const Slab& slab, double phi) {
   return builder.sorted(std::move(ring));
 }
 
-void add_slab(Builder& builder, const Element& element, std::size_t max_segments) {
+void add_slab(Builder& builder, const SkeletonElement& element, std::size_t max_segments) {
   const Slab slab = make_slab(element, builder, max_segments);
   const int half = std::max(2, builder.arc_intervals(kPi / 2));
   Ring previous = add_planar_copy(builder, slab, -1.0);
@@ -209,7 +209,7 @@ void add_slab(Builder& builder, const Element& element, std::size_t max_segments
 
 }  // namespace
 
-PrimitiveTemplate make_template(const Element& element, double radius, const TemplateOptions& options) {
+PrimitiveTemplate make_template(const SkeletonElement& element, double radius, const TemplateOptions& options) {
   if (!(radius > 0)) throw std::invalid_argument(fmt::format("template radius {} is not positive", radius));
   Builder builder(radius, std::sqrt(4 * kPi / static_cast<double>(std::max<std::size_t>(options.sphere_vertices, 12))));
   switch (element.kind) {
@@ -239,7 +239,7 @@ std::vector<Segment> template_edges(const std::vector<Tri>& faces) {
   return edges;
 }
 
-Vec3 Element::centre() const {
+Vec3 SkeletonElement::centre() const {
   Vec3 sum = Vec3::Zero();
   for (int k = 0; k < corner_count(); ++k) sum += corners[k];
   return sum / corner_count();

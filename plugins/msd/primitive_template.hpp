@@ -23,7 +23,7 @@ struct TemplateOptions {
 /// The template of `element` at the template radius `radius` (ρ0): spacing along the element is
 /// θ·radius, so the template's resolution scales with the element's size relative to ρ0.
 /// Throws std::invalid_argument for a degenerate element (coincident corners, collinear triangle).
-PrimitiveTemplate make_template(const Element& element, double radius, const TemplateOptions& options = {});
+PrimitiveTemplate make_template(const SkeletonElement& element, double radius, const TemplateOptions& options = {});
 
 /// Unique edges of a face list, each (low, high).
 std::vector<Segment> template_edges(const std::vector<Tri>& faces);

@@ -11,7 +11,7 @@ using namespace medax::msd;
 
 namespace {
 
-Element vertex_at(const Vec3& p) { return {ElementKind::Vertex, {0, 0, 0}, {p, p, p}}; }
+SkeletonElement vertex_at(const Vec3& p) { return {ElementKind::Vertex, {0, 0, 0}, {p, p, p}}; }
 
 /// δ that absorbs the chord error of T_P between its vertices on a curved S: the template's
 /// angular step θ ≈ √(4π/1588) ≈ 0.089 gives a sagitta of R θ²/8 ≈ 1e-3 R.
@@ -28,7 +28,7 @@ TEST_CASE("msd coverage: one vertex primitive covers a sphere, one edge primitiv
     const Coverage on_sphere = coverage(sphere, {fit_primitive(sphere, vertex_at(Vec3::Zero()))}, options);
     CHECK(on_sphere.energy == Approx(-1.0).margin(1e-12));
     const TargetMesh capsule(medax::testing::make_capsule(0.3, 1.0, 64));
-    const Element axis{ElementKind::Edge, {0, 1, 0}, {Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 0, 1)}};
+    const SkeletonElement axis{ElementKind::Edge, {0, 1, 0}, {Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 0, 1)}};
     const Coverage on_capsule = coverage(capsule, {fit_primitive(capsule, axis)}, options);
     CHECK(on_capsule.energy == Approx(-1.0).margin(1e-12));
   }
@@ -40,7 +40,7 @@ TEST_CASE("msd coverage: E_cov in [-1, 0], monotone under added primitives, both
   const Coverage one = coverage(box, primitives);
   primitives.push_back(fit_primitive(box, vertex_at({0.6, 0.1, 0})));
   const Coverage two = coverage(box, primitives);
-  const Element middle{ElementKind::Edge, {0, 1, 0}, {Vec3(-0.3, 0, 0), Vec3(0.3, 0, 0), Vec3(0.3, 0, 0)}};
+  const SkeletonElement middle{ElementKind::Edge, {0, 1, 0}, {Vec3(-0.3, 0, 0), Vec3(0.3, 0, 0), Vec3(0.3, 0, 0)}};
   primitives.push_back(fit_primitive(box, middle));
   const Coverage three = coverage(box, primitives);
   for (const Coverage* c : {&one, &two, &three}) {

@@ -20,14 +20,14 @@ using medax::testing::make_sphere;
 
 namespace {
 
-Element vertex_element(const Vec3& p) { return {ElementKind::Vertex, {0, 0, 0}, {p, p, p}}; }
-Element edge_element(const Vec3& a, const Vec3& b) { return {ElementKind::Edge, {0, 1, 0}, {a, b, b}}; }
-Element triangle_element(const Vec3& a, const Vec3& b, const Vec3& c) {
+SkeletonElement vertex_element(const Vec3& p) { return {ElementKind::Vertex, {0, 0, 0}, {p, p, p}}; }
+SkeletonElement edge_element(const Vec3& a, const Vec3& b) { return {ElementKind::Edge, {0, 1, 0}, {a, b, b}}; }
+SkeletonElement triangle_element(const Vec3& a, const Vec3& b, const Vec3& c) {
   return {ElementKind::Triangle, {0, 1, 2}, {a, b, c}};
 }
 
 /// Closest point of the element (vertex, segment or triangle) to p.
-Vec3 closest_on_element(const Element& e, const Vec3& p) {
+Vec3 closest_on_element(const SkeletonElement& e, const Vec3& p) {
   const auto on_segment = [](const Vec3& a, const Vec3& b, const Vec3& q) {
     const double t = std::clamp((q - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
     return Vec3(a + t * (b - a));
@@ -121,8 +121,8 @@ void check_fitted(const Primitive& p) {
   check_consistent(p);
 }
 
-const std::vector<Element>& sample_elements() {
-  static const std::vector<Element> elements{
+const std::vector<SkeletonElement>& sample_elements() {
+  static const std::vector<SkeletonElement> elements{
       vertex_element({0.1, -0.2, 0.05}), edge_element({-0.5, 0, 0}, {0.4, 0.2, 0.1}),
       triangle_element({-0.5, -0.4, 0}, {0.5, -0.3, 0.05}, {0.0, 0.5, -0.05}),
       triangle_element({-0.6, 0, 0}, {0.6, 0, 0}, {0.5, 0.1, 0})};  // obtuse
@@ -132,7 +132,7 @@ const std::vector<Element>& sample_elements() {
 }  // namespace
 
 TEST_CASE("msd templates: closed 2-manifolds, unit directions, bases on the element, the medial primitive at constant r") {
-  for (const Element& e : sample_elements()) {
+  for (const SkeletonElement& e : sample_elements()) {
     const PrimitiveTemplate t = make_template(e, 0.2);
     INFO("kind " << e.corner_count() << ", " << t.size() << " vertices");
     check_closed_manifold(t.faces, t.size());
@@ -178,7 +178,7 @@ TEST_CASE("msd fitting: an edge on the axis of a capsule reproduces the capsule"
 
 TEST_CASE("msd fitting: primitives in a box stay inside, are consistent, and contain their element") {
   const TargetMesh box(make_box(1.0, 0.8, 0.6, 12));
-  for (const Element& e : sample_elements()) {
+  for (const SkeletonElement& e : sample_elements()) {
     const Primitive p = fit_primitive(box, e);
     INFO("kind " << e.corner_count());
     check_fitted(p);
@@ -226,8 +226,8 @@ TEST_CASE("msd fitting is scale covariant") {
   SurfaceMesh mesh = make_box(1.0, 0.8, 0.6, 10), scaled = mesh;
   for (Vec3& v : scaled.vertices) v = s * v + shift;
   const TargetMesh a(mesh), b(scaled);
-  const Element e = sample_elements()[1];
-  Element moved = e;
+  const SkeletonElement e = sample_elements()[1];
+  SkeletonElement moved = e;
   for (Vec3& c : moved.corners) c = s * c + shift;
   const Primitive pa = fit_primitive(a, e), pb = fit_primitive(b, moved);
   REQUIRE(pa.fitted);

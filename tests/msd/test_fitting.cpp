@@ -2,6 +2,7 @@
 // target_mesh) on analytic shapes: notes §7 items 4, 5, 7, 8.
 #include "fitting.hpp"
 
+#include <medax/io.hpp>
 #include <medax/testing/shapes.hpp>
 
 #include <catch2/catch.hpp>
@@ -259,4 +260,24 @@ TEST_CASE("msd fitting reports an element outside the shape instead of fitting i
   const Primitive degenerate = fit_primitive(sphere, edge_element({0.1, 0, 0}, {0.1, 0, 0}));
   CHECK_FALSE(degenerate.fitted);
   CHECK(degenerate.failure.find("degenerate") != std::string::npos);
+}
+
+TEST_CASE("msd fitting on a real mesh (joint.off): vertex primitives at mid-thickness points keep every invariant") {
+  const SurfaceMesh mesh = read_mesh(MEDAX_TEST_DATA_DIR "/joint.off");
+  const TargetMesh target(mesh);
+  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero());
+  for (const Tri& f : mesh.faces) {
+    const Vec3 n = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    for (const Index v : f) normals[v] += n;
+  }
+  std::vector<SkeletonElement> elements;
+  for (const Index v : {0u, 55u, 110u, 165u}) {
+    // Half-way along the inward normal to the opposite wall: a point inside the solid.
+    const Vec3 inward = -normals[v].normalized();
+    const auto thickness = target.first_exit(mesh.vertices[v] + 1e-9 * target.scale() * inward, inward);
+    REQUIRE(thickness);
+    elements.push_back(vertex_element(mesh.vertices[v] + 0.5 * *thickness * inward));
+  }
+  const std::vector<Primitive> primitives = fit_primitives(target, elements);
+  for (const Primitive& p : primitives) check_fitted(p);
 }

@@ -12,8 +12,8 @@
 namespace medax::msd {
 
 struct TemplateOptions {
-  /// Vertices of the vertex template (paper: 1,588). Sets the angular step θ ≈ √(4π / n) used by
-  /// every curved part of every template.
+  /// Vertices of the vertex template (paper: 1,588; the rings give 1,617 for it). Sets the angular
+  /// step θ = √(4π / n) used by every curved part of every template.
   std::size_t sphere_vertices = 1588;
   /// Cap on the segments along an edge or a triangle side (spacing θ·ρ0 otherwise), which bounds
   /// a template's size for long thin elements.

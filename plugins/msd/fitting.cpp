@@ -92,14 +92,24 @@ std::vector<double> RadiusSolver::fit(double initial_radius, int* solves) {
   Eigen::VectorXd radius = Eigen::VectorXd::Constant(max_radius_.size(), initial_radius);
   const double step = options_.step_fraction * initial_radius;
   int count = 0;
-  for (int k = 0; k < options_.progressions; ++k) {
-    // t ← ρ + min(ρmax − ρ, step): grow by the step, never aim past the surface.
-    const Eigen::VectorXd target = radius + (max_radius_ - radius).cwiseMin(step);
-    count += solve(target, radius);
-  }
+  for (int k = 0; k < options_.progressions; ++k) count += solve(progression_target(radius, step), radius);
   if (solves) *solves += count;
   radius = radius.cwiseMin(max_radius_);
   return {radius.data(), radius.data() + radius.size()};
+}
+
+Eigen::VectorXd RadiusSolver::progression_target(const Eigen::VectorXd& radius, double step) const {
+  // Grow by the step, never aim past the surface.
+  if (!options_.neighbour_cap) return radius + (max_radius_ - radius).cwiseMin(step);
+  Eigen::VectorXd target(radius.size());
+  for (Eigen::Index i = 0; i < radius.size(); ++i) {
+    double smallest = radius[i];
+    for (Eigen::SparseMatrix<double>::InnerIterator entry(matrix_, i); entry; ++entry)
+      smallest = std::min(smallest, radius[entry.row()]);
+    const double capped = std::max(0.0, std::min(step, 2 * step - (radius[i] - smallest)));
+    target[i] = radius[i] + std::min(max_radius_[i] - radius[i], capped);
+  }
+  return target;
 }
 
 double initial_radius(const TargetMesh& target, const SkeletonElement& element) {

@@ -27,6 +27,9 @@ struct FitOptions {
   double step_fraction = 0.1;       ///< raise per progression, in units of ρ0
   int max_iterations = 15;          ///< inner penalty iterations per progression
   double tolerance = 1e-5;          ///< stop when ‖Δρ‖∞ < tolerance · TargetMesh::scale()
+  /// [C]'s growth rule: direction i's raise shrinks as ρ_i outgrows its smallest neighbour,
+  /// step_i = max(0, min(step, 2·step − (ρ_i − min_j∈N(i) ρ_j))). Off in the paper.
+  bool neighbour_cap = false;
   TemplateOptions templates;
 };
 
@@ -46,6 +49,8 @@ class RadiusSolver {
 
  private:
   void factorize(const std::vector<char>& contact);
+  /// t ← ρ + min(ρmax − ρ, step_i) for one progression.
+  Eigen::VectorXd progression_target(const Eigen::VectorXd& radius, double step) const;
 
   FitOptions options_;
   double tolerance_;

@@ -221,6 +221,23 @@ TEST_CASE("msd fitting: the contact penalty and the clamp keep every radius belo
   CHECK(touching > p.radius.size() / 2);
 }
 
+TEST_CASE("msd fitting with the authors' neighbour cap keeps the invariants and grows no further") {
+  const TargetMesh box(make_box(1.0, 0.8, 0.6, 12));
+  FitOptions capped;
+  capped.neighbour_cap = true;
+  for (const SkeletonElement& e : sample_elements()) {
+    INFO("kind " << e.corner_count());
+    const Primitive paper = fit_primitive(box, e), authors = fit_primitive(box, e, capped);
+    check_fitted(authors);
+    double sum_paper = 0, sum_authors = 0;
+    for (std::size_t i = 0; i < paper.radius.size(); ++i) {
+      sum_paper += paper.radius[i];
+      sum_authors += authors.radius[i];
+    }
+    CHECK(sum_authors <= sum_paper * (1 + 1e-9));
+  }
+}
+
 TEST_CASE("msd fitting is scale covariant") {
   const double s = 3.7;
   const Vec3 shift(1.5, -2.0, 0.25);

@@ -1,0 +1,61 @@
+#pragma once
+// The mutable medial mesh that Q-MAT collapses: spheres in normalised units, vertex adjacency,
+// faces with their incident-vertex lists, and the merge of one vertex into another (notes §1.6:
+// edges and faces of both ends re-inserted without duplicates, faces holding both ends vanish).
+#include "slab_quadric.hpp"
+
+#include <medax/medial_complex.hpp>
+
+#include <unordered_map>
+#include <vector>
+
+namespace medax::qmat {
+
+class CollapseMesh {
+ public:
+  /// The complex's spheres divided by `unit_length`; edges are its edges and every face side.
+  CollapseMesh(const MedialComplex& medial, double unit_length);
+
+  std::size_t size() const { return spheres.size(); }
+  std::size_t live_vertices() const { return live_; }
+  bool alive(Index v) const { return alive_[v] != 0; }
+  bool face_alive(Index f) const { return face_alive_[f] != 0; }
+
+  /// Neighbours of v (sorted, live).
+  const std::vector<Index>& neighbours(Index v) const { return neighbours_[v]; }
+  /// Live faces incident to v.
+  std::vector<Index> faces_of(Index v) const;
+  /// Live faces holding both i and j.
+  std::vector<Index> faces_of_edge(Index i, Index j) const;
+  std::size_t face_count(Index i, Index j) const { return faces_of_edge(i, j).size(); }
+  /// Vertices adjacent to both i and j.
+  std::vector<Index> common_neighbours(Index i, Index j) const;
+  const Tri& face(Index f) const { return faces_[f]; }
+  std::size_t face_slots() const { return faces_.size(); }
+  /// The input face a face slot came from (degenerate and repeated input faces get no slot).
+  Index source_face(Index f) const { return source_face_[f]; }
+  bool has_face(Index a, Index b, Index c) const;
+
+  /// Merges `gone` into `keep` (which must be adjacent); the caller sets keep's sphere.
+  void merge(Index keep, Index gone);
+
+  std::vector<Vec4> spheres;  ///< (centre, radius) / unit_length
+
+ private:
+  void add_edge(Index a, Index b);
+  void kill_face(Index f);
+  void move_face(Index f, Index from, Index to);
+  void move_neighbours(Index keep, Index gone);
+
+  struct TriHash {
+    std::size_t operator()(const Tri& t) const;
+  };
+  std::vector<char> alive_, face_alive_;
+  std::vector<std::vector<Index>> neighbours_, vertex_faces_;
+  std::vector<Index> source_face_;
+  std::vector<Tri> faces_;  // original orientation, with merged vertices renamed
+  std::unordered_map<Tri, Index, TriHash> face_index_;  // sorted triple -> face
+  std::size_t live_ = 0;
+};
+
+}  // namespace medax::qmat

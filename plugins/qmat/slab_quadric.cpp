@@ -1,0 +1,50 @@
+#include "slab_quadric.hpp"
+
+#include <cmath>
+
+namespace medax::qmat {
+
+SlabQuadric SlabQuadric::tangent_plane(const Vec3& n, const Vec4& at, double weight) {
+  const Vec4 nt(n.x(), n.y(), n.z(), 1.0);
+  const double offset = nt.dot(at);  // n·p of the tangent point p = c + r n
+  SlabQuadric q;
+  q.A = (2 * weight) * nt * nt.transpose();
+  q.b = (2 * weight * offset) * nt;
+  q.c = weight * offset * offset;
+  return q;
+}
+
+std::optional<Vec4> SlabQuadric::minimiser(double singular) const {
+  if (!(std::abs(A.determinant()) > singular)) return std::nullopt;
+  const Vec4 m = A.partialPivLu().solve(b);
+  if (!m.allFinite()) return std::nullopt;
+  return m;
+}
+
+std::optional<std::array<Vec3, 2>> slab_normals(const Vec4& m0, const Vec4& m1, const Vec4& m2,
+                                                double min_distance) {
+  const Vec3 e1 = centre_of(m1) - centre_of(m0), e2 = centre_of(m2) - centre_of(m0);
+  if (e1.norm() < min_distance || e2.norm() < min_distance || (e2 - e1).norm() < min_distance) return std::nullopt;
+  const Vec3 cross = e1.cross(e2);
+  if (!(cross.norm() > 0)) return std::nullopt;
+  const Vec3 normal = cross.normalized();
+  // n∥ = α e1 + β e2 from the Gram system of n·eᵢ = r₀ − rᵢ.
+  const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
+  const double det = g11 * g22 - g12 * g12;
+  if (!(det > 0)) return std::nullopt;
+  const double d1 = m0.w() - m1.w(), d2 = m0.w() - m2.w();
+  const double alpha = (d1 * g22 - d2 * g12) / det, beta = (d2 * g11 - d1 * g12) / det;
+  const Vec3 in_plane = alpha * e1 + beta * e2;
+  const double sq = in_plane.squaredNorm();
+  if (sq > 1) return std::nullopt;
+  const double out = std::sqrt(1 - sq);
+  return std::array<Vec3, 2>{Vec3(in_plane + out * normal), Vec3(in_plane - out * normal)};
+}
+
+double stability_ratio(const Vec4& mi, const Vec4& mj) {
+  const double d = (centre_of(mi) - centre_of(mj)).norm();
+  if (!(d > 0)) return 0;
+  return std::max(0.0, d - std::abs(mi.w() - mj.w())) / d;
+}
+
+}  // namespace medax::qmat

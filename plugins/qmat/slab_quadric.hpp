@@ -1,0 +1,56 @@
+#pragma once
+// Q-MAT's slab quadric error metric (SQEM, notes qmat_coverage_axis.md §1.2–1.3, §1.5).
+//
+// A sphere is s = (c, r) ∈ R⁴. A plane with unit normal n at offset n·p gives the signed
+// distance d = n·p − ñ·s of the sphere's tangent point, ñ = (n, 1); its quadric is
+// Q(s) = d² = ½ sᵀAs − bᵀs + c₀ with A = 2ññᵀ, b = 2(n·p)ñ, c₀ = (n·p)², and quadrics add.
+// All of it works in normalised units (coordinates and radii divided by a unit length), where
+// the authors' thresholds live.
+#include <medax/geometry.hpp>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <optional>
+
+namespace medax::qmat {
+
+using Vec4 = Eigen::Vector4d;
+using Mat4 = Eigen::Matrix4d;
+
+/// A sphere (centre, radius) as one vector.
+inline Vec4 sphere4(const Vec3& c, double r) { return {c.x(), c.y(), c.z(), r}; }
+inline Vec3 centre_of(const Vec4& s) { return s.head<3>(); }
+
+struct SlabQuadric {
+  Mat4 A = Mat4::Zero();
+  Vec4 b = Vec4::Zero();
+  double c = 0;
+
+  /// The plane with normal `n` (unit in the paper; see cone terms) tangent to sphere `at`,
+  /// times `weight`: it vanishes at `at`.
+  static SlabQuadric tangent_plane(const Vec3& n, const Vec4& at, double weight = 1);
+
+  double operator()(const Vec4& s) const { return 0.5 * s.dot(A * s) - b.dot(s) + c; }
+  SlabQuadric& operator+=(const SlabQuadric& o) {
+    A += o.A;
+    b += o.b;
+    c += o.c;
+    return *this;
+  }
+  friend SlabQuadric operator+(SlabQuadric a, const SlabQuadric& o) { return a += o; }
+  /// The minimiser (A m = b), or nothing when |det A| ≤ `singular` (the authors' 1e-12).
+  std::optional<Vec4> minimiser(double singular) const;
+};
+
+/// The two tangent planes of the slab of three spheres: unit n with n·(cᵢ − c₀) = r₀ − rᵢ.
+/// Nothing when two centres are closer than `min_distance` (1e-8), the centres are collinear, or
+/// no such plane exists (one sphere swallows the slab).
+std::optional<std::array<Vec3, 2>> slab_normals(const Vec4& m0, const Vec4& m1, const Vec4& m2,
+                                                double min_distance = 1e-8);
+
+/// The stability ratio γ = max(0, ‖cᵢ − cⱼ‖ − |rᵢ − rⱼ|) / ‖cᵢ − cⱼ‖, 0 when the centres coincide
+/// (§1.5). In [0, 1]; 1 for equal radii; 0 iff one sphere contains the other.
+double stability_ratio(const Vec4& mi, const Vec4& mj);
+
+}  // namespace medax::qmat

@@ -1,0 +1,86 @@
+// The slab quadric error metric and the stability ratio (notes §1.2, §1.5, §1.8).
+#include "collapse.hpp"
+#include "qmat_test_inputs.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace medax;
+using namespace medax::qmat;
+
+TEST_CASE("stability ratio: in [0, 1], 1 for equal radii, 0 iff one sphere contains the other", "[qmat][quadric]") {
+  CHECK(stability_ratio(sphere4({0, 0, 0}, 1), sphere4({3, 0, 0}, 1)) == Approx(1));
+  CHECK(stability_ratio(sphere4({0, 0, 0}, 2), sphere4({1, 0, 0}, 1)) == 0);    // internally tangent
+  CHECK(stability_ratio(sphere4({0, 0, 0}, 2), sphere4({0.5, 0, 0}, 1)) == 0);  // contained
+  CHECK(stability_ratio(sphere4({1, 1, 1}, 2), sphere4({1, 1, 1}, 1)) == 0);    // same centre
+  CHECK(stability_ratio(sphere4({0, 0, 0}, 2), sphere4({2, 0, 0}, 1)) == Approx(0.5));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.01, 1);
+  for (int k = 0; k < 1000; ++k) {
+    const Vec4 a = sphere4({u(rng), u(rng), u(rng)}, u(rng)), b = sphere4({u(rng), u(rng), u(rng)}, u(rng));
+    const double g = stability_ratio(a, b);
+    CHECK(g >= 0);
+    CHECK(g <= 1);
+    const double d = (centre_of(a) - centre_of(b)).norm();
+    CHECK((g == 0) == (d <= std::abs(a.w() - b.w())));
+  }
+}
+
+TEST_CASE("slab normals: both planes touch all three spheres", "[qmat][quadric]") {
+  const Vec4 m0 = sphere4({0, 0, 0}, 0.5), m1 = sphere4({2, 0, 0}, 0.3), m2 = sphere4({0, 1.5, 0.2}, 0.4);
+  const auto normals = slab_normals(m0, m1, m2);
+  REQUIRE(normals);
+  for (const Vec3& n : *normals) {
+    CHECK(n.norm() == Approx(1));
+    // The plane n·x = n·c₀ + r₀ is tangent to every sphere: n·cᵢ + rᵢ is the same for all.
+    CHECK(n.dot(centre_of(m1)) + m1.w() == Approx(n.dot(centre_of(m0)) + m0.w()));
+    CHECK(n.dot(centre_of(m2)) + m2.w() == Approx(n.dot(centre_of(m0)) + m0.w()));
+  }
+  CHECK(!slab_normals(m0, sphere4({1e-9, 0, 0}, 0.5), m2));       // centres too close
+  CHECK(!slab_normals(m0, sphere4({0.1, 0, 0}, 3), m2));          // one sphere swallows the slab
+}
+
+TEST_CASE("vertex quadrics: Q_v >= 0 and Q_v(m_v) = 0 at initialisation on real Voronoi axes",
+          "[qmat][quadric]") {
+  for (const char* file : {"ellipsoid.off", "joint.off"}) {
+    const MedialComplex axis = test::voronoi_axis(file);
+    const CollapseMesh mesh(axis, default_unit_length(axis));
+    const InitialQuadrics q = initial_quadrics(mesh, {});
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> step(0, 0.01);
+    std::size_t with_planes = 0;
+    for (Index v = 0; v < mesh.size(); ++v) {
+      const Vec4& m = mesh.spheres[v];
+      CHECK(std::abs(q.slab[v](m)) <= 1e-12);
+      const Vec4 s = m + Vec4(step(rng), step(rng), step(rng), step(rng));
+      CHECK(q.slab[v](s) >= -1e-14);
+      CHECK(q.add[v](m) == Approx(0).margin(1e-12));  // add terms are anchored at m_v as well
+      if (q.slab[v].A.norm() > 0) {  // a vertex with slab planes: positive off its sphere
+        ++with_planes;
+        CHECK(q.slab[v](s) > 0);
+      }
+    }
+    CHECK(with_planes + q.invalid_faces > 0);
+    CHECK(with_planes > mesh.size() / 4);
+  }
+}
+
+TEST_CASE("a flat equal-radius sheet gives a singular edge quadric", "[qmat][quadric]") {
+  MedialComplex flat;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) flat.add_vertex(Vec3(i, j, 0), 0.5);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const Index a = 3 * i + j;
+      flat.add_face(a, a + 3, a + 4);
+      flat.add_face(a, a + 4, a + 1);
+    }
+  flat.close_edges();
+  const CollapseMesh mesh(flat, 1.0);
+  const InitialQuadrics q = initial_quadrics(mesh, {});
+  CHECK(q.invalid_faces == 0);
+  // Every plane is z = ±(… ) with n = ±e_z: A_e has rank ≤ 2, det 0.
+  CHECK(std::abs((q.slab[4] + q.slab[5]).A.determinant()) <= 1e-12);
+  CHECK(!(q.slab[4] + q.slab[5]).minimiser(1e-12));
+}

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs medax's build dependencies from Debian (bookworm) with apt-get. Does nothing when
-# they are all present already.
+# Installs medax's build dependencies from Debian (bookworm) with apt-get (nothing when they
+# are all present already), then the offline mesh corpus: the CGAL meshes of libcgal-demo,
+# checked against datasets/meshes.tsv and copied into data/meshes/ (scripts/fetch-meshes.sh).
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,7 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
   catch2 libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev
+  libcgal-demo
 )
 
 missing=()
@@ -19,11 +21,12 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "medax: all build dependencies are installed"
-  exit 0
+else
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "medax: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-echo "medax: installing ${missing[*]}"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+"$(dirname "$0")/fetch-meshes.sh" --debian

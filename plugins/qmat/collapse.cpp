@@ -81,23 +81,27 @@ class Simplifier {
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
 };
 
+/// Whether moving i and j to `centre` turns the normal of a face around them (one that does not
+/// vanish) by more than 90°.
 bool Simplifier::flips(Index i, Index j, const Vec3& centre) const {
-  for (Index end : {i, j})
-    for (Index f : mesh_.faces_of(end)) {
+  bool flipped = false;
+  for (Index end : {i, j}) {
+    const Index other = end == i ? j : i;
+    mesh_.for_each_face(end, [&](Index f) {
       const Tri& t = mesh_.face(f);
-      if (std::find(t.begin(), t.end(), end == i ? j : i) != t.end()) continue;  // vanishes
-      Vec3 before[3], after[3];
-      for (int k = 0; k < 3; ++k) {
-        before[k] = centre_of(mesh_.spheres[t[k]]);
-        after[k] = t[k] == end ? centre : before[k];
-      }
-      const Vec3 e1 = before[1] - before[0], e2 = before[2] - before[0];
+      if (flipped || t[0] == other || t[1] == other || t[2] == other) return;  // done, or vanishes
+      const int at = t[0] == end ? 0 : (t[1] == end ? 1 : 2);
+      const Vec3& a = centre_of(mesh_.spheres[t[(at + 1) % 3]]);
+      const Vec3& b = centre_of(mesh_.spheres[t[(at + 2) % 3]]);
+      const Vec3 p = centre_of(mesh_.spheres[end]);
+      const Vec3 e1 = a - p, e2 = b - p;
       const Vec3 n0 = e1.cross(e2);
       // A sliver (the Voronoi axis has many, from nearly coincident vertices) has no normal to flip.
-      if (!(n0.norm() > kSliver * e1.norm() * e2.norm())) continue;
-      const Vec3 n1 = (after[1] - after[0]).cross(after[2] - after[0]);
-      if (n0.dot(n1) < 0) return true;
-    }
+      if (!(n0.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) return;
+      flipped = n0.dot((a - centre).cross(b - centre)) < 0;
+    });
+    if (flipped) return true;
+  }
   return false;
 }
 
@@ -125,7 +129,7 @@ Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_fli
 /// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean.
 Vec4 Simplifier::optimal_sphere(Index i, Index j, double& error) const {
   const SlabQuadric qe = slab_[i] + slab_[j];
-  const bool faceless = mesh_.faces_of_edge(i, j).empty();
+  const bool faceless = mesh_.face_count(i, j) == 0;
   if (!faceless && !(std::abs(qe.A.determinant()) > kSingular)) return cheapest(i, j, qe, options_.flip_test, error);
   const SlabQuadric qa = qe + add_[i] + add_[j];
   const std::optional<Vec4> m = qa.minimiser(kSingular);
@@ -156,7 +160,7 @@ std::optional<Entry> Simplifier::evaluate(Index i, Index j) const {
 /// hole), or an edge to a curve tip (one edge, no face).
 bool Simplifier::guard_refuses(Index i, Index j) const {
   for (Index end : {i, j})
-    if (mesh_.neighbours(end).size() == 1 && mesh_.faces_of(end).empty()) return true;
+    if (mesh_.neighbours(end).size() == 1 && !mesh_.has_faces(end)) return true;
   if (mesh_.face_count(i, j) > 1) return false;
   for (Index w : mesh_.common_neighbours(i, j))
     if (!mesh_.has_face(i, j, w) && mesh_.face_count(j, w) <= 1 && mesh_.face_count(w, i) <= 1) return true;

@@ -36,6 +36,7 @@ CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
   for (std::size_t v = 0; v < medial.num_vertices(); ++v)
     spheres.push_back(sphere4(medial.centres[v] / unit_length, medial.radii[v] / unit_length));
   for (const Segment& e : medial.edges) add_edge(e[0], e[1]);
+  face_index_.reserve(2 * medial.faces.size());
   for (Index input = 0; input < medial.faces.size(); ++input) {
     const Tri& t = medial.faces[input];
     const Tri key = sorted(t);
@@ -58,11 +59,21 @@ void CollapseMesh::add_edge(Index a, Index b) {
   insert_sorted(neighbours_[b], a);
 }
 
-std::vector<Index> CollapseMesh::faces_of(Index v) const {
-  std::vector<Index> out;
+bool CollapseMesh::has_faces(Index v) const {
   for (Index f : vertex_faces_[v])
-    if (face_alive_[f]) out.push_back(f);
-  return out;
+    if (face_alive_[f]) return true;
+  return false;
+}
+
+std::size_t CollapseMesh::face_count(Index i, Index j) const {
+  const Index scan = vertex_faces_[i].size() <= vertex_faces_[j].size() ? i : j;
+  const Index other = scan == i ? j : i;
+  std::size_t count = 0;
+  for (Index f : vertex_faces_[scan]) {
+    const Tri& t = faces_[f];
+    count += face_alive_[f] && (t[0] == other || t[1] == other || t[2] == other);
+  }
+  return count;
 }
 
 std::vector<Index> CollapseMesh::faces_of_edge(Index i, Index j) const {

@@ -23,11 +23,16 @@ class CollapseMesh {
 
   /// Neighbours of v (sorted, live).
   const std::vector<Index>& neighbours(Index v) const { return neighbours_[v]; }
-  /// Live faces incident to v.
-  std::vector<Index> faces_of(Index v) const;
+  /// Calls visit(face) for each live face incident to v (no allocation: the hot loops use it).
+  template <typename Visit>
+  void for_each_face(Index v, Visit&& visit) const {
+    for (Index f : vertex_faces_[v])
+      if (face_alive_[f]) visit(f);
+  }
+  bool has_faces(Index v) const;
   /// Live faces holding both i and j.
   std::vector<Index> faces_of_edge(Index i, Index j) const;
-  std::size_t face_count(Index i, Index j) const { return faces_of_edge(i, j).size(); }
+  std::size_t face_count(Index i, Index j) const;
   /// Vertices adjacent to both i and j.
   std::vector<Index> common_neighbours(Index i, Index j) const;
   const Tri& face(Index f) const { return faces_[f]; }

@@ -1,0 +1,641 @@
+#include "construction.hpp"
+
+#include <medax/union_find.hpp>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace medax::msd {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using TriIt = std::vector<K::Triangle_3>::const_iterator;
+using TriTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, TriIt>>>;
+
+K::Point_3 to_cgal(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+Segment sorted_pair(Index a, Index b) { return a < b ? Segment{a, b} : Segment{b, a}; }
+Tri sorted_tri(Index a, Index b, Index c) {
+  Tri t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Step a: restricted Voronoi pieces. Every vertex of a piece carries a symbolic key so that the
+// same point of the split M gets the same key from every facet that sees it:
+//   {0, v}            a vertex of M,
+//   {1, e, i, j}      where bisector(i, j) crosses edge e of M,
+//   {2, t, i, j, k}   the Voronoi vertex of sites i, j, k inside triangle t.
+using Key = std::array<Index, 5>;
+constexpr Index kNone = std::numeric_limits<Index>::max();
+
+struct Corner {
+  Vec3 point;
+  Key key;
+  long support;  ///< the polygon edge leaving this corner: -1-s = triangle side s, m >= 0 = bisector with m
+};
+
+struct Piece {
+  RvdPiece rvd;
+  std::vector<Key> keys;  ///< one per polygon corner, in order
+};
+
+/// Signed side of x for the bisector of sites i and j: <= 0 where i is at least as near.
+double bisector_side(const Vec3& x, const Vec3& si, const Vec3& sj) {
+  return 2 * x.dot(sj - si) - (sj.squaredNorm() - si.squaredNorm());
+}
+
+Key crossing_key(const MedialMesh& mesh, Index facet, long support, Index i, Index j) {
+  if (support < 0) {
+    const auto v = mesh.facet_vertices(facet);
+    const auto s = static_cast<std::size_t>(-1 - support);
+    const Index e = *mesh.edge_index(v[s], v[(s + 1) % v.size()]);
+    const auto p = sorted_pair(i, j);
+    return {1, e, p[0], p[1], kNone};
+  }
+  const auto t = sorted_tri(i, j, static_cast<Index>(support));
+  return {2, facet, t[0], t[1], t[2]};
+}
+
+/// A dangling edge's interval clipped by the half-space nearer to i than to j.
+std::vector<Corner> clip_interval(const MedialMesh& mesh, Index facet, const std::vector<Corner>& ends,
+                                  const std::vector<Vec3>& sites, Index i, Index j) {
+  const double g0 = bisector_side(ends[0].point, sites[i], sites[j]), g1 = bisector_side(ends[1].point, sites[i], sites[j]);
+  if (g0 > 0 && g1 > 0) return {};
+  if (g0 <= 0 && g1 <= 0) return ends;
+  const double t = g0 / (g0 - g1);
+  Corner crossing{ends[0].point + t * (ends[1].point - ends[0].point), crossing_key(mesh, facet, -1, i, j), -1};
+  return g0 <= 0 ? std::vector<Corner>{ends[0], crossing} : std::vector<Corner>{crossing, ends[1]};
+}
+
+/// Sutherland–Hodgman clip of site i's polygon by the half-space nearer to i than to j.
+std::vector<Corner> clip(const MedialMesh& mesh, Index facet, const std::vector<Corner>& polygon,
+                         const std::vector<Vec3>& sites, Index i, Index j) {
+  std::vector<Corner> out;
+  const std::size_t n = polygon.size();
+  std::vector<double> g(n);
+  for (std::size_t k = 0; k < n; ++k) g[k] = bisector_side(polygon[k].point, sites[i], sites[j]);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t next = (k + 1) % n;
+    const bool strict_cross = (g[k] < 0 && g[next] > 0) || (g[k] > 0 && g[next] < 0);
+    if (g[k] <= 0) {
+      Corner c = polygon[k];
+      if (g[next] > 0 && !strict_cross) c.support = static_cast<long>(j);
+      out.push_back(c);
+    }
+    if (strict_cross) {
+      const double t = g[k] / (g[k] - g[next]);
+      const Vec3 x = polygon[k].point + t * (polygon[next].point - polygon[k].point);
+      const long leaving = g[k] < 0 ? static_cast<long>(j) : polygon[k].support;
+      out.push_back({x, crossing_key(mesh, facet, polygon[k].support, i, j), leaving});
+    }
+  }
+  return out;
+}
+
+/// The sites that may own part of a facet: a site farther from the facet than some site's
+/// farthest corner owns nothing there (and its bisectors are implied by that site's).
+std::vector<Index> candidate_sites(const std::vector<Vec3>& corners, const std::vector<Vec3>& sites) {
+  std::vector<double> nearest(sites.size());
+  double bound = std::numeric_limits<double>::infinity();
+  for (std::size_t s = 0; s < sites.size(); ++s) {
+    double farthest = 0;
+    for (const auto& c : corners) farthest = std::max(farthest, (c - sites[s]).norm());
+    bound = std::min(bound, farthest);
+    const auto p = to_cgal(sites[s]);
+    nearest[s] = corners.size() == 3
+                     ? std::sqrt(CGAL::squared_distance(p, K::Triangle_3(to_cgal(corners[0]), to_cgal(corners[1]), to_cgal(corners[2]))))
+                     : std::sqrt(CGAL::squared_distance(p, K::Segment_3(to_cgal(corners[0]), to_cgal(corners[1]))));
+  }
+  std::vector<Index> out;
+  for (Index s = 0; s < sites.size(); ++s)
+    if (nearest[s] <= bound) out.push_back(s);
+  return out;
+}
+
+RvdPiece measured_piece(Index facet, Index site, const std::vector<Corner>& polygon) {
+  RvdPiece piece{facet, site, site, {}, 0, Vec3::Zero()};
+  for (const auto& c : polygon) piece.polygon.push_back(c.point);
+  if (polygon.size() == 2) {
+    piece.measure = (polygon[1].point - polygon[0].point).norm();
+    piece.centroid = 0.5 * (polygon[0].point + polygon[1].point);
+    return piece;
+  }
+  Vec3 weighted = Vec3::Zero();
+  for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
+    const Vec3 &a = polygon[0].point, &b = polygon[k].point, &c = polygon[k + 1].point;
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    piece.measure += area;
+    weighted += area * (a + b + c) / 3;
+  }
+  piece.centroid = piece.measure > 0 ? Vec3(weighted / piece.measure) : piece.polygon[0];
+  return piece;
+}
+
+std::vector<Piece> facet_pieces(const MedialMesh& mesh, Index facet, const std::vector<Vec3>& sites) {
+  const auto vertices = mesh.facet_vertices(facet);
+  std::vector<Corner> start;
+  std::vector<Vec3> corners;
+  for (std::size_t s = 0; s < vertices.size(); ++s) {
+    corners.push_back(mesh.points()[vertices[s]]);
+    start.push_back({corners.back(), {0, vertices[s], kNone, kNone, kNone}, -1 - static_cast<long>(s)});
+  }
+  if (vertices.size() == 2) start[1].support = -1;  // both ends bound the one side
+  std::vector<Piece> out;
+  const auto candidates = candidate_sites(corners, sites);
+  for (Index i : candidates) {
+    auto polygon = start;
+    for (Index j : candidates)
+      if (j != i && polygon.size() >= 2)
+        polygon = vertices.size() == 2 ? clip_interval(mesh, facet, polygon, sites, i, j) : clip(mesh, facet, polygon, sites, i, j);
+    if (polygon.size() < vertices.size()) continue;  // empty or degenerate: i owns no part of the facet
+    Piece piece{measured_piece(facet, i, polygon), {}};
+    if (piece.rvd.measure <= 0) continue;
+    for (const auto& c : polygon) piece.keys.push_back(c.key);
+    out.push_back(std::move(piece));
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Step b: one connected component per cell.
+struct SplitMesh {
+  std::vector<Piece> pieces;
+  std::map<Key, std::vector<Index>> key_pieces;  ///< the pieces touching each split vertex
+  std::map<Key, Vec3> key_point;
+};
+
+SplitMesh split_mesh(const MedialMesh& mesh, const std::vector<Vec3>& sites) {
+  SplitMesh split;
+  for (Index f = 0; f < mesh.num_facets(); ++f)
+    for (auto& piece : facet_pieces(mesh, f, sites)) split.pieces.push_back(std::move(piece));
+  for (Index p = 0; p < split.pieces.size(); ++p)
+    for (std::size_t c = 0; c < split.pieces[p].keys.size(); ++c) {
+      const auto& key = split.pieces[p].keys[c];
+      auto& list = split.key_pieces[key];
+      if (list.empty() || list.back() != p) list.push_back(p);
+      split.key_point.emplace(key, split.pieces[p].rvd.polygon[c]);
+    }
+  return split;
+}
+
+/// Components of pieces with the same cell that touch at a split vertex.
+UnionFind cell_components(const SplitMesh& split) {
+  UnionFind sets(split.pieces.size());
+  for (const auto& [key, list] : split.key_pieces)
+    for (std::size_t a = 1; a < list.size(); ++a)
+      for (std::size_t b = 0; b < a; ++b)
+        if (split.pieces[list[a]].rvd.cell == split.pieces[list[b]].rvd.cell) sets.unite(list[a], list[b]);
+  return sets;
+}
+
+/// The piece holding each site: on the site's host facet, labelled with the site.
+std::vector<Index> site_pieces(const MedialMesh& mesh, const SplitMesh& split, const std::vector<Vec3>& sites) {
+  std::vector<Index> out(sites.size(), kNone);
+  for (Index s = 0; s < sites.size(); ++s) {
+    const Index host = mesh.closest_point(sites[s]).facet;
+    for (Index p = 0; p < split.pieces.size(); ++p)
+      if (split.pieces[p].rvd.facet == host && split.pieces[p].rvd.site == s) out[s] = p;
+    if (out[s] == kNone)
+      throw std::invalid_argument("site " + std::to_string(s) + " owns no part of its facet of M: it coincides with another site; give distinct sites");
+  }
+  return out;
+}
+
+/// Relabels every orphan component to the neighbouring component whose site is nearest its
+/// centre (area-weighted centroid). Returns the number of orphans relabelled.
+std::size_t fix_orphans(SplitMesh& split, const std::vector<Vec3>& sites, const std::vector<Index>& roots) {
+  std::size_t relabelled = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    auto sets = cell_components(split);
+    std::set<Index> rooted;
+    for (Index r : roots) rooted.insert(sets.find(r));
+    std::map<Index, std::pair<Vec3, double>> centre;  // component -> (weighted sum, measure)
+    for (Index p = 0; p < split.pieces.size(); ++p) {
+      auto& c = centre[sets.find(p)];
+      c.first += split.pieces[p].rvd.measure * split.pieces[p].rvd.centroid;
+      c.second += split.pieces[p].rvd.measure;
+    }
+    std::map<Index, std::set<Index>> neighbour_cells;  // orphan component -> cells touching it
+    for (const auto& [key, list] : split.key_pieces)
+      for (Index a : list)
+        for (Index b : list)
+          if (!rooted.count(sets.find(a)) && sets.find(a) != sets.find(b)) neighbour_cells[sets.find(a)].insert(split.pieces[b].rvd.cell);
+    for (const auto& [component, cells] : neighbour_cells) {
+      const Vec3 c = centre[component].first / std::max(centre[component].second, 1e-300);
+      Index best = *cells.begin();
+      for (Index cell : cells)
+        if ((sites[cell] - c).norm() < (sites[best] - c).norm()) best = cell;
+      for (Index p = 0; p < split.pieces.size(); ++p)
+        if (sets.find(p) == component) split.pieces[p].rvd.cell = best;
+      ++relabelled;
+      changed = true;
+      break;  // components changed: recompute them
+    }
+  }
+  return relabelled;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Step c: the restricted Delaunay triangulation, from the cells touching each split vertex.
+struct Rdt {
+  std::set<Segment> edges;
+  std::set<Tri> triangles;
+};
+
+std::vector<Index> cells_at(const SplitMesh& split, const std::vector<Index>& pieces) {
+  std::set<Index> cells;
+  for (Index p : pieces) cells.insert(split.pieces[p].rvd.cell);
+  return {cells.begin(), cells.end()};
+}
+
+/// The cells of a polygon in angular order around their centroid, in their best-fit plane.
+std::vector<Index> angular_order(std::vector<Index> cells, const std::vector<Vec3>& sites) {
+  Vec3 centre = Vec3::Zero();
+  for (Index c : cells) centre += sites[c];
+  centre /= static_cast<double>(cells.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (Index c : cells) cov += (sites[c] - centre) * (sites[c] - centre).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Vec3 u = eig.eigenvectors().col(2), v = eig.eigenvectors().col(1);
+  std::vector<std::pair<double, Index>> by_angle;
+  for (Index c : cells) by_angle.push_back({std::atan2((sites[c] - centre).dot(v), (sites[c] - centre).dot(u)), c});
+  std::sort(by_angle.begin(), by_angle.end());
+  std::vector<Index> out;
+  for (const auto& a : by_angle) out.push_back(a.second);
+  return out;
+}
+
+void add_triangle(Rdt& rdt, Index a, Index b, Index c) {
+  rdt.triangles.insert(sorted_tri(a, b, c));
+  rdt.edges.insert(sorted_pair(a, b));
+  rdt.edges.insert(sorted_pair(b, c));
+  rdt.edges.insert(sorted_pair(c, a));
+}
+
+Rdt dual_complex(const SplitMesh& split, const std::vector<Vec3>& sites, ConstructionStats& stats) {
+  Rdt rdt;
+  std::set<std::vector<Index>> polygons;
+  for (const auto& [key, list] : split.key_pieces) {
+    const auto cells = cells_at(split, list);
+    if (cells.size() == 2) rdt.edges.insert(sorted_pair(cells[0], cells[1]));
+    if (cells.size() == 3) add_triangle(rdt, cells[0], cells[1], cells[2]);
+    if (cells.size() >= 4) polygons.insert(cells);
+  }
+  for (const auto& cells : polygons) {
+    const auto ring = angular_order(cells, sites);
+    for (std::size_t k = 1; k + 1 < ring.size(); ++k) add_triangle(rdt, ring[0], ring[k], ring[k + 1]);
+  }
+  stats.polygons = polygons.size();
+  return rdt;
+}
+
+double triangle_area(const std::vector<Vec3>& p, const Tri& t) {
+  return 0.5 * (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).norm();
+}
+
+/// MATFP thinning: while the triangles close a tetrahedron, delete its smallest free face (a
+/// face of exactly one closed tetrahedron), which opens the tetrahedron without a new hole.
+std::size_t thin_tetrahedra(Rdt& rdt, const std::vector<Vec3>& points) {
+  std::size_t thinned = 0;
+  for (;;) {
+    std::map<Tri, int> tets_of_face;
+    for (const auto& t : rdt.triangles)
+      for (Index d = 0; d < points.size(); ++d) {
+        if (d <= t[2]) continue;  // each tetrahedron once, from its three lowest vertices
+        const Tri f1 = sorted_tri(t[0], t[1], d), f2 = sorted_tri(t[0], t[2], d), f3 = sorted_tri(t[1], t[2], d);
+        if (rdt.triangles.count(f1) && rdt.triangles.count(f2) && rdt.triangles.count(f3))
+          for (const auto& f : {t, f1, f2, f3}) ++tets_of_face[f];
+      }
+    if (tets_of_face.empty()) return thinned;
+    const Tri* best = nullptr;
+    for (const auto& [face, count] : tets_of_face)
+      if (count == 1 && (!best || triangle_area(points, face) < triangle_area(points, *best))) best = &face;
+    if (!best) best = &tets_of_face.begin()->first;  // every face shared: open the first
+    rdt.triangles.erase(*best);
+    ++thinned;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Steps d–g work on the growing skeleton.
+struct Builder {
+  const MedialMesh& mesh;
+  const SurfaceCrossing& surface;
+  const ConstructionOptions& options;
+  std::vector<Vec3> points;
+  std::vector<char> is_site;
+  std::vector<Index> host;
+  std::map<Segment, std::vector<Index>> polylines;  ///< each RDT edge (low, high) -> its vertices
+  ConstructionStats& stats;
+
+  Index add_vertex(const Vec3& p, Index facet) {
+    points.push_back(p);
+    is_site.push_back(0);
+    host.push_back(facet);
+    return static_cast<Index>(points.size() - 1);
+  }
+};
+
+/// A polyline on M from u to v: u, the M shortest path between a corner of u's facet and a
+/// corner of v's facet (the pair that makes the whole path shortest), v. Each part lies on M.
+/// Returns the points and the facet holding each part.
+std::pair<std::vector<Vec3>, std::vector<Index>> path_on_mesh(const Builder& b, Index u, Index v) {
+  const auto& mesh = b.mesh;
+  double best = std::numeric_limits<double>::infinity();
+  Index from = 0, to = 0;
+  for (Index a : mesh.facet_vertices(b.host[u]))
+    for (Index c : mesh.facet_vertices(b.host[v])) {
+      const double length = (b.points[u] - mesh.points()[a]).norm() + mesh.distance(a, c) + (mesh.points()[c] - b.points[v]).norm();
+      if (length < best) best = length, from = a, to = c;
+    }
+  std::vector<Vec3> points{b.points[u]};
+  std::vector<Index> facets{b.host[u]};
+  const auto path = mesh.shortest_path(from, to);
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    points.push_back(mesh.points()[path[k]]);
+    facets.push_back(k + 1 < path.size() ? mesh.edge_facets(*mesh.edge_index(path[k], path[k + 1]))[0] : b.host[v]);
+  }
+  points.push_back(b.points[v]);
+  return {points, facets};
+}
+
+/// The point of the polyline nearest to x, with the facet of its part.
+MeshPoint project_on_polyline(const std::vector<Vec3>& points, const std::vector<Index>& facets, const Vec3& x) {
+  MeshPoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+    const Vec3 d = points[k + 1] - points[k];
+    const double t = d.squaredNorm() > 0 ? std::clamp((x - points[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+    const Vec3 p = points[k] + t * d;
+    if ((p - x).norm() < best.distance) best = {p, facets[k], (p - x).norm()};
+  }
+  return best;
+}
+
+/// Step e for one edge: the vertices of its revision, u first, v last.
+std::vector<Index> bisect_until_inside(Builder& b, Index u, Index v, int depth) {
+  if (!b.surface.crosses(b.points[u], b.points[v])) return {u, v};
+  const auto [path, facets] = path_on_mesh(b, u, v);
+  const auto m = project_on_polyline(path, facets, 0.5 * (b.points[u] + b.points[v]));
+  const double too_close = 1e-9 * (b.points[u] - b.points[v]).norm();
+  if (depth >= b.options.max_bisection_depth || (m.point - b.points[u]).norm() <= too_close ||
+      (m.point - b.points[v]).norm() <= too_close) {
+    ++b.stats.unresolved_edges;
+    return {u, v};
+  }
+  const Index mid = b.add_vertex(m.point, m.facet);
+  ++b.stats.bisections;
+  auto left = bisect_until_inside(b, u, mid, depth + 1);
+  const auto right = bisect_until_inside(b, mid, v, depth + 1);
+  left.insert(left.end(), right.begin() + 1, right.end());
+  return left;
+}
+
+/// Step d: the groups of split vertices shared by cells a and b, joined along piece boundaries.
+std::vector<std::vector<Key>> interfaces(const SplitMesh& split, Index a, Index b) {
+  std::map<Key, Index> id;
+  for (const auto& [key, list] : split.key_pieces) {
+    const auto cells = cells_at(split, list);
+    if (std::binary_search(cells.begin(), cells.end(), a) && std::binary_search(cells.begin(), cells.end(), b))
+      id.emplace(key, static_cast<Index>(id.size()));
+  }
+  UnionFind sets(id.size());
+  for (const auto& piece : split.pieces) {
+    if (piece.rvd.cell != a) continue;
+    for (std::size_t c = 0; c < piece.keys.size(); ++c) {
+      auto p = id.find(piece.keys[c]), q = id.find(piece.keys[(c + 1) % piece.keys.size()]);
+      if (p != id.end() && q != id.end()) sets.unite(p->second, q->second);
+    }
+  }
+  std::map<Index, std::vector<Key>> groups;
+  for (const auto& [key, index] : id) groups[sets.find(index)].push_back(key);
+  std::vector<std::vector<Key>> out;
+  for (auto& g : groups) out.push_back(std::move(g.second));
+  return out;
+}
+
+Vec3 mean_point(const SplitMesh& split, const std::vector<Key>& keys) {
+  Vec3 mean = Vec3::Zero();
+  for (const auto& key : keys) mean += split.key_point.at(key);
+  return mean / static_cast<double>(keys.size());
+}
+
+/// The facet of a piece touching a split vertex (the first one).
+Index key_facet(const SplitMesh& split, const Key& key) { return split.pieces[split.key_pieces.at(key)[0]].rvd.facet; }
+
+/// Step d: for every interface of a pair beyond the one the straight edge stands for (the one
+/// nearest the sites' midpoint), a vertex at the interface's split point nearest its mean.
+std::vector<std::array<Index, 3>> extra_interface_paths(Builder& b, const SplitMesh& split, const Rdt& rdt) {
+  std::vector<std::array<Index, 3>> paths;
+  for (const auto& e : rdt.edges) {
+    const auto groups = interfaces(split, e[0], e[1]);
+    if (groups.size() < 2) continue;
+    const Vec3 middle = 0.5 * (b.points[e[0]] + b.points[e[1]]);
+    std::size_t primary = 0;
+    for (std::size_t g = 1; g < groups.size(); ++g)
+      if ((mean_point(split, groups[g]) - middle).norm() < (mean_point(split, groups[primary]) - middle).norm()) primary = g;
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      if (g == primary) continue;
+      const Vec3 mean = mean_point(split, groups[g]);
+      const Key* nearest = &groups[g][0];
+      for (const auto& key : groups[g])
+        if ((split.key_point.at(key) - mean).norm() < (split.key_point.at(*nearest) - mean).norm()) nearest = &key;
+      const Index mid = b.add_vertex(split.key_point.at(*nearest), key_facet(split, *nearest));
+      paths.push_back({e[0], mid, e[1]});
+    }
+  }
+  b.stats.extra_interfaces = paths.size();
+  return paths;
+}
+
+/// Step f: a triangle whose sides were revised, as the 3D polygon of its revised sides,
+/// triangulated by CGAL's minimum-area hole filling (Liepa).
+std::vector<Tri> retriangulate(const Builder& b, const Tri& t) {
+  std::vector<Index> ring;
+  for (int s = 0; s < 3; ++s) {
+    const Index u = t[s], v = t[(s + 1) % 3];
+    auto side = b.polylines.at(sorted_pair(u, v));
+    if (side.front() != u) std::reverse(side.begin(), side.end());
+    ring.insert(ring.end(), side.begin(), side.end() - 1);
+  }
+  if (ring.size() == 3) return {t};
+  std::vector<K::Point_3> polyline;
+  for (Index v : ring) polyline.push_back(to_cgal(b.points[v]));
+  std::vector<CGAL::Triple<int, int, int>> patch;
+  CGAL::Polygon_mesh_processing::triangulate_hole_polyline(polyline, std::back_inserter(patch));
+  if (patch.empty())  // hole filling found no triangulation: fan from the first corner
+    for (int k = 1; k + 1 < static_cast<int>(ring.size()); ++k) patch.emplace_back(0, k, k + 1);
+  std::vector<Tri> out;
+  for (const auto& p : patch) out.push_back(sorted_tri(ring[p.first], ring[p.second], ring[p.third]));
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Step g.
+struct Elements {
+  std::set<Segment> edges;
+  std::set<Tri> triangles;
+};
+
+/// Removes degree-2 non-site vertices on straight chains (angle above the option) when the
+/// replacing segment does not cross S.
+void collapse_straight_vertices(Builder& b, Elements& el) {
+  const double limit = b.options.collapse_angle_deg * M_PI / 180;
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::vector<Index>> neighbours(b.points.size());
+    std::vector<char> in_triangle(b.points.size(), 0);
+    for (const auto& e : el.edges) neighbours[e[0]].push_back(e[1]), neighbours[e[1]].push_back(e[0]);
+    for (const auto& t : el.triangles) in_triangle[t[0]] = in_triangle[t[1]] = in_triangle[t[2]] = 1;
+    for (Index v = 0; v < b.points.size() && !changed; ++v) {
+      if (b.is_site[v] || in_triangle[v] || neighbours[v].size() != 2) continue;
+      const Index a = neighbours[v][0], c = neighbours[v][1];
+      const Vec3 da = b.points[a] - b.points[v], dc = b.points[c] - b.points[v];
+      const double angle = std::acos(std::clamp(da.normalized().dot(dc.normalized()), -1.0, 1.0));
+      if (angle <= limit || el.edges.count(sorted_pair(a, c)) || b.surface.crosses(b.points[a], b.points[c])) continue;
+      el.edges.erase(sorted_pair(a, v));
+      el.edges.erase(sorted_pair(v, c));
+      el.edges.insert(sorted_pair(a, c));
+      ++b.stats.collapsed;
+      changed = true;
+    }
+  }
+}
+
+/// Drops triangle sides from the edges, unused non-site vertices, and renumbers.
+Skeleton assemble(const Builder& b, const Elements& el) {
+  std::set<Segment> sides;
+  for (const auto& t : el.triangles) sides.insert({t[0], t[1]}), sides.insert({t[1], t[2]}), sides.insert({t[0], t[2]});
+  std::vector<char> used(b.points.size(), 0);
+  for (Index v = 0; v < b.points.size(); ++v) used[v] = b.is_site[v];
+  for (const auto& e : el.edges) used[e[0]] = used[e[1]] = 1;
+  for (const auto& t : el.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  Skeleton s;
+  std::vector<Index> index(b.points.size(), kNone);
+  for (Index v = 0; v < b.points.size(); ++v)
+    if (used[v]) {
+      index[v] = static_cast<Index>(s.vertices.size());
+      s.vertices.push_back(b.points[v]);
+      s.is_site.push_back(b.is_site[v]);
+      s.host_facet.push_back(b.host[v]);
+    }
+  for (const auto& e : el.edges)
+    if (!sides.count(e)) s.edges.push_back(sorted_pair(index[e[0]], index[e[1]]));
+  for (const auto& t : el.triangles) s.triangles.push_back(sorted_tri(index[t[0]], index[t[1]], index[t[2]]));
+  std::sort(s.edges.begin(), s.edges.end());
+  std::sort(s.triangles.begin(), s.triangles.end());
+  return s;
+}
+
+void check_sites(const std::vector<Vec3>& sites) {
+  if (sites.empty()) throw std::invalid_argument("no site: the skeleton needs at least one site on M");
+  for (std::size_t a = 0; a < sites.size(); ++a)
+    for (std::size_t b = a + 1; b < sites.size(); ++b)
+      if (sites[a] == sites[b])
+        throw std::invalid_argument("sites " + std::to_string(a) + " and " + std::to_string(b) + " coincide; give distinct sites");
+}
+
+std::vector<MeshPoint> projected_sites(const MedialMesh& mesh, const std::vector<Vec3>& sites) {
+  std::vector<MeshPoint> out;
+  for (const auto& s : sites) out.push_back(mesh.closest_point(s));
+  return out;
+}
+
+/// Steps a–b on projected sites.
+SplitMesh labelled_split(const MedialMesh& mesh, const std::vector<Vec3>& sites, ConstructionStats& stats) {
+  check_sites(sites);
+  auto split = split_mesh(mesh, sites);
+  stats.orphan_components = fix_orphans(split, sites, site_pieces(mesh, split, sites));
+  return split;
+}
+
+/// Steps d–f: every RDT edge (and every extra-interface path) revised, triangles rebuilt.
+Elements revised_elements(Builder& b, const SplitMesh& split, const Rdt& rdt) {
+  std::vector<std::vector<Index>> chains;
+  for (const auto& e : rdt.edges) chains.push_back({e[0], e[1]});
+  if (b.options.multi_interface)
+    for (const auto& p : extra_interface_paths(b, split, rdt)) chains.push_back({p[0], p[1]}), chains.push_back({p[1], p[2]});
+  Elements el;
+  for (const auto& chain : chains) {
+    const auto revised = bisect_until_inside(b, chain[0], chain[1], 0);
+    for (std::size_t k = 0; k + 1 < revised.size(); ++k) el.edges.insert(sorted_pair(revised[k], revised[k + 1]));
+    if (rdt.edges.count(sorted_pair(chain[0], chain[1]))) b.polylines[sorted_pair(chain[0], chain[1])] = revised;
+  }
+  for (const auto& t : rdt.triangles) {
+    const auto parts = retriangulate(b, t);
+    b.stats.retriangulated += parts.size() > 1;
+    for (const auto& p : parts)
+      if (p[0] != p[1] && p[1] != p[2]) el.triangles.insert(p);
+  }
+  return el;
+}
+
+}  // namespace
+
+struct SurfaceCrossing::Impl {
+  std::vector<K::Triangle_3> triangles;
+  TriTree tree;
+};
+
+SurfaceCrossing::SurfaceCrossing(const SurfaceMesh& surface) : impl_(std::make_unique<Impl>()) {
+  for (const auto& f : surface.faces)
+    impl_->triangles.emplace_back(to_cgal(surface.vertices[f[0]]), to_cgal(surface.vertices[f[1]]), to_cgal(surface.vertices[f[2]]));
+  impl_->tree.rebuild(impl_->triangles.begin(), impl_->triangles.end());
+}
+SurfaceCrossing::~SurfaceCrossing() = default;
+SurfaceCrossing::SurfaceCrossing(SurfaceCrossing&&) noexcept = default;
+SurfaceCrossing& SurfaceCrossing::operator=(SurfaceCrossing&&) noexcept = default;
+
+bool SurfaceCrossing::crosses(const Vec3& a, const Vec3& b) const {
+  return impl_->tree.do_intersect(K::Segment_3(to_cgal(a), to_cgal(b)));
+}
+
+bool SurfaceCrossing::crosses(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  return impl_->tree.do_intersect(K::Triangle_3(to_cgal(a), to_cgal(b), to_cgal(c)));
+}
+
+std::vector<RvdPiece> restricted_voronoi(const MedialMesh& mesh, const std::vector<Vec3>& sites) {
+  std::vector<Vec3> on_mesh;
+  for (const auto& p : projected_sites(mesh, sites)) on_mesh.push_back(p.point);
+  ConstructionStats stats;
+  auto split = labelled_split(mesh, on_mesh, stats);
+  std::vector<RvdPiece> out;
+  for (auto& piece : split.pieces) out.push_back(std::move(piece.rvd));
+  return out;
+}
+
+Skeleton construct_skeleton(const MedialMesh& mesh, const std::vector<Vec3>& sites, const SurfaceCrossing& surface,
+                            const ConstructionOptions& options) {
+  ConstructionStats stats;
+  const auto projected = projected_sites(mesh, sites);
+  Builder b{mesh, surface, options, {}, {}, {}, {}, stats};
+  for (const auto& p : projected) b.points.push_back(p.point), b.is_site.push_back(1), b.host.push_back(p.facet);
+  const auto split = labelled_split(mesh, b.points, stats);
+  auto rdt = dual_complex(split, b.points, stats);
+  stats.tetrahedra_thinned = thin_tetrahedra(rdt, b.points);
+  auto el = revised_elements(b, split, rdt);
+  collapse_straight_vertices(b, el);
+  Skeleton skeleton = assemble(b, el);
+  for (const auto& t : skeleton.triangles)
+    stats.crossing_triangles += surface.crosses(skeleton.vertices[t[0]], skeleton.vertices[t[1]], skeleton.vertices[t[2]]);
+  for (const auto& piece : split.pieces) skeleton.pieces.push_back(piece.rvd);
+  skeleton.stats = stats;
+  return skeleton;
+}
+
+}  // namespace medax::msd

@@ -226,3 +226,28 @@ TEST_CASE("the shrinking-ball correction moves perturbed spheres back onto a cap
     CHECK(spheres.radii[v] == Approx(radius).epsilon(0.05));
   }
 }
+
+TEST_CASE("max_cost stops before the first dearer collapse; parity mode still keeps the saved count",
+          "[qmat][collapse]") {
+  const MedialComplex axis = test::voronoi_axis("ellipsoid.off");
+  QmatReport to_target;
+  simplify(axis, {}, to(40), &to_target);
+  REQUIRE(to_target.stopped_by == "target");
+  QmatOptions bounded;
+  bounded.max_cost = 0.5 * to_target.last_cost;
+  QmatReport report;
+  const MedialComplex out = simplify(axis, {}, bounded, &report);
+  check_valid(out);
+  CHECK(report.stopped_by == "max_cost");
+  CHECK(report.last_cost <= bounded.max_cost);
+  CHECK(out.num_vertices() > 40);
+
+  std::vector<char> saved(axis.num_vertices(), 0);
+  for (std::size_t v = 0; v < axis.num_vertices(); v += 50) saved[v] = 1;
+  const std::size_t n_saved = std::count(saved.begin(), saved.end(), 1);
+  QmatOptions parity = to(n_saved);
+  parity.stale_saved_costs = true;
+  const MedialComplex stale = simplify(axis, saved, parity, nullptr);
+  check_valid(stale);
+  CHECK(stale.num_vertices() == n_saved);  // one component, every vertex collapses onto a saved one
+}

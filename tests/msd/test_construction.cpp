@@ -154,6 +154,32 @@ TEST_CASE("a slab's planar medial sheet with 3 sites gives one triangle") {
       CHECK((piece.centroid - sites[piece.site]).norm() <= (piece.centroid - sites[j]).norm() + 1e-12);
   }
   CHECK(area == Approx(0.9 * 0.9).epsilon(1e-12));
+  const auto cells = restricted_voronoi(sheet, sites);
+  REQUIRE(cells.size() == s.pieces.size());
+  for (std::size_t p = 0; p < cells.size(); ++p) CHECK(cells[p].polygon == s.pieces[p].polygon);
+}
+
+TEST_CASE("an orphan component of a cell goes to its neighbour: a hairpin keeps a path skeleton") {
+  // Lower arm y = -0.15, bend x = 0.5, upper arm y = 0.15. Site 0's Voronoi cell also holds the
+  // upper arm's end (x < -0.34), which touches M only through site 2's part: an orphan.
+  std::vector<Vec3> corners{{-0.5, -0.15, 0}, {0.5, -0.15, 0}, {0.5, 0.15, 0}, {-0.5, 0.15, 0}};
+  std::vector<Vec3> points;
+  std::vector<Segment> edges;
+  for (std::size_t c = 0; c + 1 < corners.size(); ++c)
+    for (int k = 0; k < 10; ++k) points.push_back(corners[c] + (corners[c + 1] - corners[c]) * (k / 10.0));
+  points.push_back(corners.back());
+  for (Index k = 0; k + 1 < points.size(); ++k) edges.push_back({k, k + 1});
+  const MedialMesh hairpin(points, {}, edges);
+  const auto surface = testing::make_box(0.6, 0.25, 0.1, 2);
+  const SurfaceCrossing crossing(surface);
+  const auto s = construct_skeleton(hairpin, {{-0.5, -0.15, 0}, {0.5, 0, 0}, {0, 0.15, 0}}, crossing);
+  check_invariants(s, hairpin, surface, crossing, 3);
+  CHECK(s.stats.orphan_components >= 1);
+  CHECK(s.edges == std::vector<Segment>{{0, 1}, {1, 2}});  // no edge 0-2 through the orphan
+  bool relabelled_upper_end = false;
+  for (const auto& piece : s.pieces)
+    if (piece.site == 0 && piece.centroid.y() > 0) relabelled_upper_end = piece.cell == 2;
+  CHECK(relabelled_upper_end);
 }
 
 TEST_CASE("a capsule's axis with 2 sites gives one edge, with 3 a chain") {

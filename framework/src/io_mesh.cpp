@@ -1,4 +1,5 @@
-// Surface mesh I/O through CGAL's polygon-soup readers and writers (OFF, OBJ, PLY, STL).
+// Surface mesh I/O: ASCII OFF read here; OBJ, PLY and STL through CGAL's polygon-soup readers after
+// checks of their own; writers through CGAL.
 #include <medax/io.hpp>
 
 #include <CGAL/IO/OBJ.h>
@@ -92,15 +93,15 @@ bool parse_integer(std::string_view token, long long& value) {
 }
 
 /// Parses a coordinate; the error names the element and the line.
-double coordinate(const fs::path& path, std::string_view token, const Lines& lines, std::size_t vertex) {
+double coordinate(const fs::path& path, std::string_view token, std::size_t line, std::size_t vertex) {
   const std::string s(token);
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size())
-    fail(path, fmt::format("line {}: vertex {}: '{}' is not a number", lines.line(), vertex, s));
+    fail(path, fmt::format("line {}: vertex {}: '{}' is not a number", line, vertex, s));
   if (!std::isfinite(v))
     fail(path, fmt::format("line {}: vertex {} has the non-finite coordinate '{}' (fix or remove the vertex)",
-                           lines.line(), vertex, s));
+                           line, vertex, s));
   return v;
 }
 
@@ -112,20 +113,30 @@ void check_counts_fit(const fs::path& path, const std::string& announced, long d
                            announced, bytes, static_cast<double>(needed)));
 }
 
-/// ASCII OFF ("OFF" keyword or none) checked in full before CGAL reads it: header counts against
-/// the file size, then every vertex (3 finite coordinates) and face (corner count, indices in range)
-/// with its line. Variants (COFF, NOFF, 4OFF, binary ...) are left to CGAL after the size check.
-void check_off(const fs::path& path, const std::string& text) {
+using Polygons = std::vector<std::vector<std::size_t>>;
+
+/// ASCII OFF read here, not by CGAL (whose scanner trusts counts and turns out-of-range colours
+/// into undefined behaviour): header counts against the file size, then every vertex (3 finite
+/// coordinates, or 4 homogeneous ones for 4OFF; colours, normals and texture coordinates after
+/// them are ignored) and face (corner count, indices in range) with its line. Binary OFF and nOFF
+/// are refused.
+void read_off(const fs::path& path, const std::string& text, std::vector<Point>& points, Polygons& polygons) {
   Lines lines(text);
   std::vector<std::string_view> t;
   if (!lines.next(t)) fail(path, "the file holds only blank lines and comments; an OFF file starts with 'OFF'");
   std::size_t first = 0;
-  bool plain = true;  // "OFF" or no keyword: checked line by line below
+  std::size_t dimension = 3;  // 4 for homogeneous coordinates (4OFF)
   if (t[0].size() >= 3 && t[0].substr(t[0].size() - 3) == "OFF") {
     const std::string_view keyword = t[0];
-    plain = keyword == "OFF";
-    // nOFF has a dimension line and binary OFF binary counts: left to CGAL's scanner.
-    if (keyword.find('n') != std::string_view::npos || (t.size() > 1 && t[1] == "BINARY")) return;
+    if (keyword.find('4') != std::string_view::npos) dimension = 4;
+    if (t.size() > 1 && t[1] == "BINARY")
+      fail(path, fmt::format("line {}: binary OFF is not supported; convert the mesh to ASCII OFF, PLY or STL "
+                             "(e.g. with meshlabserver or CGAL's write_OFF)",
+                             lines.line()));
+    if (keyword.find('n') != std::string_view::npos)
+      fail(path, fmt::format("line {}: '{}' (OFF with a dimension line) is not supported; write it as plain 'OFF' "
+                             "with 3 coordinates per vertex",
+                             lines.line(), keyword));
     first = 1;
     if (t.size() == 1) {
       if (!lines.next(t)) fail(path, "the file ends after 'OFF'; the counts 'vertices faces edges' are missing");
@@ -139,16 +150,18 @@ void check_off(const fs::path& path, const std::string& text) {
   // A vertex line takes at least 6 bytes ("0 0 0\n"), a face line 8 ("3 0 1 2\n"); binary takes more.
   check_counts_fit(path, fmt::format("{} vertices and {} faces", nv, nf),
                    6.0L * nv + 8.0L * nf - 1, rest);
-  if (!plain) return;
   for (long long v = 0; v < nv; ++v) {
     if (!lines.next(t))
       fail(path, fmt::format("the header announces {} vertices but the file ends after {} (line {}): "
                              "the file is truncated",
                              nv, v, lines.line()));
-    if (t.size() < 3)
-      fail(path, fmt::format("line {}: vertex {} has {} coordinate(s); a vertex line is 'x y z'", lines.line(), v,
-                             t.size()));
-    for (int k = 0; k < 3; ++k) coordinate(path, t[k], lines, static_cast<std::size_t>(v));
+    if (t.size() < dimension)
+      fail(path, fmt::format("line {}: vertex {} has {} coordinate(s); a vertex line is '{}'", lines.line(), v,
+                             t.size(), dimension == 3 ? "x y z" : "x y z w"));
+    double xyzw[4] = {0, 0, 0, 1};
+    for (std::size_t k = 0; k < dimension; ++k)
+      xyzw[k] = coordinate(path, t[k], lines.line(), static_cast<std::size_t>(v));
+    points.emplace_back(xyzw[0] / xyzw[3], xyzw[1] / xyzw[3], xyzw[2] / xyzw[3]);
   }
   for (long long f = 0; f < nf; ++f) {
     if (!lines.next(t))
@@ -162,6 +175,7 @@ void check_off(const fs::path& path, const std::string& text) {
       fail(path, fmt::format("line {}: face {} announces {} corners but lists only {}", lines.line(), f, n,
                              t.size() - 1));
     if (n < 3) fail(path, fmt::format("line {}: face {} has {} corners; a face needs at least 3", lines.line(), f, n));
+    std::vector<std::size_t>& polygon = polygons.emplace_back();
     for (long long k = 1; k <= n; ++k) {
       long long index = 0;
       if (!parse_integer(t[k], index))
@@ -169,6 +183,7 @@ void check_off(const fs::path& path, const std::string& text) {
       if (index < 0 || index >= nv)
         fail(path, fmt::format("line {}: face {} refers to vertex {} but the vertices are 0..{}", lines.line(), f,
                                index, nv - 1));
+      polygon.push_back(static_cast<std::size_t>(index));
     }
   }
 }
@@ -186,7 +201,7 @@ void explain_obj(const fs::path& path, const std::string& text) {
       if (t.size() < 4)
         fail(path, fmt::format("line {}: vertex {} has {} coordinate(s); a vertex line is 'v x y z'", lines.line(),
                                nv, t.size() - 1));
-      for (int k = 1; k <= 3; ++k) coordinate(path, t[k], lines, static_cast<std::size_t>(nv));
+      for (int k = 1; k <= 3; ++k) coordinate(path, t[k], lines.line(), static_cast<std::size_t>(nv));
       ++nv;
     } else if (t[0] == "f") {
       if (t.size() < 4)
@@ -226,7 +241,7 @@ void explain_stl(const fs::path& path, const std::string& text) {
     } else if (t[0] == "vertex") {
       if (t.size() < 4)
         fail(path, fmt::format("line {}: facet {}: a vertex line is 'vertex x y z'", lines.line(), facet));
-      for (int k = 1; k <= 3; ++k) coordinate(path, t[k], lines, vertex);
+      for (int k = 1; k <= 3; ++k) coordinate(path, t[k], lines.line(), vertex);
       ++vertex;
       ++corners;
     } else if (t[0] == "endfacet") {
@@ -239,43 +254,185 @@ void explain_stl(const fs::path& path, const std::string& text) {
   if (open) fail(path, fmt::format("facet {} is not closed by 'endfacet': the file is truncated", facet));
 }
 
-/// PLY header: element counts against the bytes after the header (ASCII: 2 bytes per property at
-/// least; binary: the property sizes, a list its count).
-void check_ply(const fs::path& path, const std::string& text) {
-  const std::size_t end = text.find("end_header");
-  if (text.rfind("ply", 0) != 0 || end == std::string::npos)
-    fail(path, "not a PLY file: it must start with 'ply' and have an 'end_header' line");
-  const std::size_t body = std::min(text.size(), text.find('\n', end) == std::string::npos ? text.size()
-                                                                                           : text.find('\n', end) + 1);
-  Lines lines(std::string_view(text).substr(0, end));
-  std::vector<std::string_view> t;
+/// A PLY header: the elements with their properties, the format and where the body starts.
+struct PlyProperty {
+  std::string name;
+  int size = 4;        ///< bytes of a value (binary)
+  int count_size = 0;  ///< bytes of a list's count; 0 for a scalar
+  bool count_signed = false;
+};
+struct PlyHeaderElement {
+  std::string name;
+  long long count = 0;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
   bool ascii = false;
-  struct Element { std::string name; long long count; long double bytes; };
-  std::vector<Element> elements;
-  const auto size_of = [](std::string_view type) -> int {
-    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-    if (type == "double" || type == "float64") return 8;
+  bool big_endian = false;
+  std::vector<PlyHeaderElement> elements;
+  std::size_t body = 0;       ///< offset of the first byte after `end_header`
+  std::size_t body_line = 0;  ///< lines before the body
+};
+
+/// Bytes of a PLY value type; 0 for a name that is not a PLY type.
+int ply_type_size(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
     return 4;
-  };
-  while (lines.next(t)) {
-    if (t[0] == "format" && t.size() > 1) ascii = t[1] == "ascii";
-    if (t[0] == "element") {
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+/// One `property` line: 'property TYPE NAME' or 'property list COUNT_TYPE TYPE NAME'.
+PlyProperty ply_property(const fs::path& path, const std::vector<std::string_view>& t, std::size_t line) {
+  const bool list = t.size() == 5 && t[1] == "list";
+  PlyProperty property;
+  property.name = std::string(t.back());
+  property.size = ply_type_size(t[list ? 3 : 1]);
+  if (list) {
+    property.count_size = ply_type_size(t[2]);
+    property.count_signed = t[2] == "char" || t[2] == "int8" || t[2] == "short" || t[2] == "int16" || t[2] == "int" ||
+                            t[2] == "int32";
+  }
+  if ((t.size() != 3 && !list) || property.size == 0 || (list && property.count_size == 0))
+    fail(path, fmt::format("line {}: a property line is 'property TYPE NAME' or 'property list COUNT_TYPE TYPE "
+                           "NAME', TYPE one of char uchar short ushort int uint float double",
+                           line));
+  return property;
+}
+
+/// The header, checked line by line (CGAL trusts it: a property before any element made it read
+/// out of bounds).
+PlyHeader read_ply_header(const fs::path& path, const std::string& text) {
+  if (text.rfind("ply", 0) != 0) fail(path, "not a PLY file: it must start with 'ply'");
+  PlyHeader header;
+  Lines lines(text);
+  std::vector<std::string_view> t;
+  for (;;) {
+    if (!lines.next(t)) fail(path, "the PLY header has no 'end_header' line");
+    const std::string_view keyword = t[0];
+    if (keyword == "end_header") break;
+    if (keyword == "format") {
+      header.ascii = t.size() == 3 && t[1] == "ascii";
+      header.big_endian = t.size() == 3 && t[1] == "binary_big_endian";
+      if (t.size() != 3 || (!header.ascii && !header.big_endian && t[1] != "binary_little_endian"))
+        fail(path, fmt::format("line {}: a format line is 'format ascii|binary_little_endian|binary_big_endian 1.0'",
+                               lines.line()));
+    } else if (keyword == "element") {
       long long n = 0;
       if (t.size() != 3 || !parse_integer(t[2], n) || n < 0)
         fail(path, fmt::format("line {}: an element line is 'element NAME COUNT'", lines.line()));
-      elements.push_back({std::string(t[1]), n, 0});
-    } else if (t[0] == "property" && !elements.empty() && t.size() >= 3) {
-      elements.back().bytes += ascii ? 2 : (t[1] == "list" && t.size() >= 5 ? size_of(t[2]) : size_of(t[1]));
+      header.elements.push_back({std::string(t[1]), n, {}});
+    } else if (keyword == "property") {
+      if (header.elements.empty())
+        fail(path, fmt::format("line {}: a property comes before any 'element' line", lines.line()));
+      header.elements.back().properties.push_back(ply_property(path, t, lines.line()));
+    } else if (keyword != "ply" && keyword != "comment" && keyword != "obj_info") {
+      fail(path, fmt::format("line {}: '{}' is not a PLY header line (format, element, property, comment, "
+                             "end_header)",
+                             lines.line(), keyword));
     }
   }
+  header.body = lines.offset();
+  header.body_line = lines.line();
+  return header;
+}
+
+/// Element counts against the bytes after the header (ASCII: 2 bytes per property at least;
+/// binary: the property sizes, a list its count), before anything is walked or allocated.
+void check_ply_counts(const fs::path& path, const std::string& text, const PlyHeader& header) {
   long double needed = 0;
   std::string announced;
-  for (const Element& e : elements) {
-    needed += static_cast<long double>(e.count) * std::max<long double>(e.bytes, 1);
+  for (const PlyHeaderElement& e : header.elements) {
+    long double bytes = 0;
+    for (const PlyProperty& p : e.properties) bytes += header.ascii ? 2 : (p.count_size ? p.count_size : p.size);
+    needed += static_cast<long double>(e.count) * std::max<long double>(bytes, 1);
     announced += fmt::format("{}{} '{}' elements", announced.empty() ? "" : ", ", e.count, e.name);
   }
-  check_counts_fit(path, announced, needed - 1, text.size() - body);
+  check_counts_fit(path, announced, needed - 1, text.size() - header.body);
+}
+
+long long vertex_count(const PlyHeader& header) {
+  for (const PlyHeaderElement& e : header.elements)
+    if (e.name == "vertex") return e.count;
+  return 0;
+}
+
+/// ASCII body: one line per element with the values its properties declare, coordinates finite,
+/// face indices in range; errors name the line and the element index.
+void check_ply_ascii_body(const fs::path& path, const std::string& text, const PlyHeader& header) {
+  Lines lines(std::string_view(text).substr(header.body));
+  std::vector<std::string_view> t;
+  const long long nv = vertex_count(header);
+  const auto where = [&](const PlyHeaderElement& e, long long i) {
+    return fmt::format("line {}: {} {}", header.body_line + lines.line(), e.name, i);
+  };
+  for (const PlyHeaderElement& e : header.elements)
+    for (long long i = 0; i < e.count; ++i) {
+      if (!lines.next(t))
+        fail(path, fmt::format("the header announces {} '{}' elements but the file ends after {}: the file is "
+                               "truncated",
+                               e.count, e.name, i));
+      std::size_t k = 0;
+      for (const PlyProperty& p : e.properties) {
+        long long n = 1;
+        if (p.count_size && (k >= t.size() || !parse_integer(t[k++], n) || n < 0))
+          fail(path, fmt::format("{}: the list '{}' needs a count >= 0", where(e, i), p.name));
+        for (long long j = 0; j < n; ++j, ++k) {
+          if (k >= t.size())
+            fail(path, fmt::format("{}: '{}' is missing (the line has {} values)", where(e, i), p.name, t.size()));
+          long long index = 0;
+          if (p.count_size && p.name.rfind("vertex_ind", 0) == 0 && !parse_integer(t[k], index))
+            fail(path, fmt::format("{}: '{}' is not a vertex index", where(e, i), t[k]));
+          if (p.count_size && p.name.rfind("vertex_ind", 0) == 0 && (index < 0 || index >= nv))
+            fail(path, fmt::format("{} {} refers to vertex {} but the vertices are 0..{} (line {})", e.name, i, index,
+                                   nv - 1, header.body_line + lines.line()));
+          if (!p.count_size && e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z"))
+            coordinate(path, t[k], header.body_line + lines.line(), static_cast<std::size_t>(i));
+        }
+      }
+      if (k != t.size())
+        fail(path, fmt::format("{} has {} values but the header declares {}", where(e, i), t.size(), k));
+    }
+}
+
+/// Binary body: every list count checked against the bytes left, so no count is trusted.
+void check_ply_binary_body(const fs::path& path, const std::string& text, const PlyHeader& header) {
+  std::size_t at = header.body;
+  const auto read_count = [&](const PlyProperty& p) -> long long {
+    unsigned char bytes[8] = {};
+    std::memcpy(bytes, text.data() + at, static_cast<std::size_t>(p.count_size));
+    unsigned long long value = 0;
+    for (int b = 0; b < p.count_size; ++b)
+      value |= static_cast<unsigned long long>(bytes[header.big_endian ? p.count_size - 1 - b : b]) << (8 * b);
+    const unsigned long long sign = 1ULL << (8 * p.count_size - 1);
+    return p.count_signed && (value & sign) ? -1 : static_cast<long long>(value);
+  };
+  for (const PlyHeaderElement& e : header.elements)
+    for (long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        const std::size_t left = text.size() - std::min(at, text.size());
+        long long n = 1;
+        if (p.count_size) {
+          if (left < static_cast<std::size_t>(p.count_size)) n = -2;
+          else n = read_count(p), at += static_cast<std::size_t>(p.count_size);
+        }
+        if (n == -1) fail(path, fmt::format("{} {}: the list '{}' has a negative count", e.name, i, p.name));
+        const long double bytes = static_cast<long double>(std::max(n, 0LL)) * p.size;
+        if (n == -2 || bytes > static_cast<long double>(text.size() - std::min(at, text.size())))
+          fail(path, fmt::format("{} {}: '{}' runs past the end of the file (byte {}): the file is truncated or "
+                                 "a list count is wrong",
+                                 e.name, i, p.name, at));
+        at += static_cast<std::size_t>(bytes);
+      }
+}
+
+void check_ply(const fs::path& path, const std::string& text) {
+  const PlyHeader header = read_ply_header(path, text);
+  check_ply_counts(path, text, header);
+  if (header.ascii) check_ply_ascii_body(path, text, header);
+  else check_ply_binary_body(path, text, header);
 }
 
 /// Binary STL: the triangle count against the file size (50 bytes a triangle after 84).
@@ -291,22 +448,8 @@ void check_stl(const fs::path& path, const std::string& text) {
     check_counts_fit(path, fmt::format("{} triangles", n), 50.0L * n, text.size() - 84);
 }
 
-}  // namespace
-
-SurfaceMesh read_mesh(const fs::path& path) {
-  require_mesh_extension(path);
-  if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path.string()));
-  if (fs::is_directory(path)) fail(path, "is a folder, not a mesh file");
-  const std::string ext = lower_extension(path);
-  {
-    const std::string text = read_all(path);
-    if (text.empty()) fail(path, "empty file (0 bytes)");
-    if (ext == ".off") check_off(path, text);
-    else if (ext == ".ply") check_ply(path, text);
-    else if (ext == ".stl") check_stl(path, text);
-  }
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
+/// OBJ, PLY and STL through CGAL's polygon soup reader (after the checks above for PLY and STL).
+void read_with_cgal(const fs::path& path, const std::string& ext, std::vector<Point>& points, Polygons& polygons) {
   bool ok = false;
   try {
     ok = CGAL::IO::read_polygon_soup(path.string(), points, polygons, CGAL::parameters::verbose(false));
@@ -321,6 +464,25 @@ SurfaceMesh read_mesh(const fs::path& path) {
     throw IoError(fmt::format("{}: cannot parse as {} (is the file complete and well formed?)",
                               path.string(), ext.substr(1)));
   }
+}
+
+}  // namespace
+
+SurfaceMesh read_mesh(const fs::path& path) {
+  require_mesh_extension(path);
+  if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path.string()));
+  if (fs::is_directory(path)) fail(path, "is a folder, not a mesh file");
+  const std::string ext = lower_extension(path);
+  std::vector<Point> points;
+  Polygons polygons;
+  {
+    const std::string text = read_all(path);
+    if (text.empty()) fail(path, "empty file (0 bytes)");
+    if (ext == ".off") read_off(path, text, points, polygons);
+    else if (ext == ".ply") check_ply(path, text);
+    else if (ext == ".stl") check_stl(path, text);
+  }
+  if (ext != ".off") read_with_cgal(path, ext, points, polygons);
   SurfaceMesh mesh;
   mesh.vertices.reserve(points.size());
   for (const Point& p : points) {

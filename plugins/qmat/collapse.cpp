@@ -86,6 +86,7 @@ class Simplifier {
 bool Simplifier::flips(Index i, Index j, const Vec3& centre) const {
   bool flipped = false;
   for (Index end : {i, j}) {
+    if (centre_of(mesh_.spheres[end]) == centre) continue;  // this end does not move
     const Index other = end == i ? j : i;
     mesh_.for_each_face(end, [&](Index f) {
       const Tri& t = mesh_.face(f);

@@ -84,7 +84,10 @@ void QmatStage::simplify(const Shape& shape, MedialComplex& medial, Context& ctx
   if (!shape.mesh.empty()) options.unit_length = bbox_diagonal(shape.mesh.vertices);
   QmatReport report;
   medial = qmat::simplify(medial, saved, options, &report,
-                          [&ctx](double f) { ctx.progress(std::min(1.0, f), "collapsing edges"); });
+                          [&ctx](double f) {
+                            ctx.check_cancelled();
+                            ctx.progress(std::min(1.0, f), "collapsing edges");
+                          });
   ctx.info(fmt::format("{} -> {} vertices ({} collapses, {} saved, target {}); stopped by {}; last priority {:.3g}",
                        report.initial_vertices, report.final_vertices, report.collapses, report.saved,
                        options.target_vertices, report.stopped_by, report.last_cost));

@@ -3,6 +3,7 @@
 #include <medax/services/kdtree.hpp>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace medax::coverage_axis {
 
@@ -60,21 +61,39 @@ Index shortest(const std::vector<Index>& candidates, const std::vector<std::vect
                            [&](Index x, Index y) { return lists[x].size() < lists[y].size(); });
 }
 
+/// The columns as bitsets over the rows, `words` 64-bit words each (fast subset tests).
+struct ColumnBits {
+  std::size_t words;
+  std::vector<std::uint64_t> bits;
+  explicit ColumnBits(const SetCover& cover) : words((cover.rows + 63) / 64), bits(cover.columns.size() * words, 0) {
+    for (std::size_t j = 0; j < cover.columns.size(); ++j)
+      for (Index r : cover.columns[j]) bits[j * words + r / 64] |= std::uint64_t(1) << (r % 64);
+  }
+  bool subset(Index a, Index b) const {
+    for (std::size_t w = 0; w < words; ++w)
+      if (bits[a * words + w] & ~bits[b * words + w]) return false;
+    return true;
+  }
+};
+
 /// Removes empty columns and columns whose rows another column covers as well.
 bool drop_dominated_columns(Presolved& p) {
   const auto& columns = p.reduced.columns;
   const auto by_row = row_columns(p.reduced);
+  const ColumnBits bits(p.reduced);
   std::vector<char> keep_column(columns.size(), 1);
   bool changed = false;
   for (Index a = 0; a < columns.size(); ++a) {
     bool dominated = columns[a].empty();
     if (!dominated) {
       // A dominator covers every row of a, in particular a's row with the fewest columns.
-      for (Index b : by_row[shortest(columns[a], by_row)])
-        if (b != a && dominated_by(columns[a], a, columns[b], b)) {
+      for (Index b : by_row[shortest(columns[a], by_row)]) {
+        const std::size_t na = columns[a].size(), nb = columns[b].size();
+        if (b != a && (nb > na || (nb == na && b < a)) && bits.subset(a, b)) {
           dominated = true;
           break;
         }
+      }
     }
     if (dominated) {
       keep_column[a] = 0;
@@ -129,17 +148,20 @@ Presolved presolve(const SetCover& cover) {
   return p;
 }
 
+/// How many nearest centres geometric dominance tries per ball.
+constexpr std::size_t kDominanceNeighbours = 16;
+
 std::vector<Index> geometrically_undominated(const Balls& balls, double dilation) {
   const std::size_t n = balls.centres.size();
   if (n == 0) return {};
-  const double max_radius = *std::max_element(balls.radii.begin(), balls.radii.end());
   const services::PointIndex index(balls.centres);
   std::vector<Index> kept;
   for (Index a = 0; a < n; ++a) {
     const double ra = balls.radii[a] + dilation;
     bool inside_another = false;
-    // Any b containing a's ball has its centre within r̃_b − r̃_a ≤ max r − r_a of a's.
-    for (const auto& [b, d] : index.within(balls.centres[a], max_radius - balls.radii[a] + 1e-9)) {
+    // Only the nearest centres are tried: a pre-filter (a ball inside a far centre's ball is left
+    // to the exact column dominance of presolve()), cheap where a radius query would return most balls.
+    for (const auto& [b, d] : index.k_nearest(balls.centres[a], kDominanceNeighbours)) {
       if (b == a) continue;
       const double rb = balls.radii[b] + dilation;
       // A tolerance in favour of keeping a (rounding must not drop a ball that pokes out);

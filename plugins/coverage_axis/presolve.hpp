@@ -24,8 +24,9 @@ struct Presolved {
 /// Forced picks, duplicate/dominated columns and dominated rows, repeated until nothing changes.
 Presolved presolve(const SetCover& cover);
 
-/// Geometric dominance: the candidates whose dilated ball is not inside another's
-/// (‖c_a − c_b‖ + r̃_a ≤ r̃_b drops a; of identical balls the lowest index stays). Ascending.
+/// Geometric dominance, a cheap pre-filter: drops a when the dilated ball of one of its 16 nearest
+/// centres b contains a's (‖c_a − c_b‖ + r̃_a ≤ r̃_b; of identical balls the lowest index stays);
+/// presolve()'s column dominance catches the rest. Returns the kept candidates, ascending.
 std::vector<Index> geometrically_undominated(const Balls& balls, double dilation);
 
 }  // namespace medax::coverage_axis

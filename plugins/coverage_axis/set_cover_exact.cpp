@@ -4,11 +4,13 @@
 
 #include <CbcEventHandler.hpp>
 #include <CbcModel.hpp>
+#include <CbcSolver.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <OsiClpSolverInterface.hpp>
 
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 namespace medax::coverage_axis {
@@ -40,24 +42,26 @@ OsiClpSolverInterface set_cover_program(const SetCover& cover) {
   return program;
 }
 
-/// Forwards CBC's node events to the caller's progress callback, a few times a second at most.
+/// Forwards CBC's node events to the caller's progress callback, a few times a second at most,
+/// with the forced picks added to CBC's incumbent and bound.
 class ProgressEvents : public CbcEventHandler {
  public:
-  ProgressEvents(SolveProgress progress, Clock::time_point start)
-      : progress_(std::move(progress)), start_(start), last_(start) {}
+  ProgressEvents(SolveProgress progress, Clock::time_point start, double forced)
+      : progress_(std::move(progress)), start_(start), last_(start), forced_(forced) {}
   CbcEventHandler* clone() const override { return new ProgressEvents(*this); }
   CbcAction event(CbcEvent which) override {
     if (!progress_ || (which != node && which != solution)) return noAction;
     if (which == node && seconds_since(last_) < 0.25) return noAction;
     last_ = Clock::now();
-    const double incumbent = model_->getObjValue();
-    const bool go_on = progress_(seconds_since(start_), incumbent, model_->getBestPossibleObjValue());
+    const bool go_on =
+        progress_(seconds_since(start_), forced_ + model_->getObjValue(), forced_ + model_->getBestPossibleObjValue());
     return go_on ? noAction : stop;
   }
 
  private:
   SolveProgress progress_;
   Clock::time_point start_, last_;
+  double forced_;
 };
 
 /// The LP relaxation's optimum (a lower bound on the cover size).
@@ -74,24 +78,28 @@ struct Branched {
   double bound = 0;
 };
 
-/// CBC branch and cut from the greedy cover; columns with x > 0.5 (rounded, not truncated).
-Branched branch_and_cut(const OsiClpSolverInterface& program, const std::vector<Index>& warm,
-                        const ExactOptions& options, const SolveProgress& progress) {
+/// CBC's standard branch and cut (its command-line driver's default cuts and heuristics, one
+/// thread) from the greedy cover; columns with x > 0.5 (rounded, not truncated).
+Branched branch_and_cut(OsiClpSolverInterface program, const std::vector<Index>& warm, const ExactOptions& options,
+                        const SolveProgress& progress, std::size_t forced) {
+  std::vector<std::pair<std::string, double>> start;
+  for (int j = 0; j < program.getNumCols(); ++j) {
+    program.setColName(j, "x" + std::to_string(j));
+    start.emplace_back("x" + std::to_string(j), 0.0);
+  }
+  for (Index j : warm) start[j].second = 1.0;
   CbcModel model(program);
-  model.setLogLevel(0);
-  model.messageHandler()->setLogLevel(0);
-  model.solver()->messageHandler()->setLogLevel(0);
-  model.setMaximumSeconds(options.time_limit);
-  std::vector<double> start(program.getNumCols(), 0.0);
-  for (Index j : warm) start[j] = 1.0;
-  model.setBestSolution(start.data(), static_cast<int>(start.size()), static_cast<double>(warm.size()), true);
-  const ProgressEvents events(progress, Clock::now());
+  CbcMain0(model);
+  model.setMIPStart(start);
+  const ProgressEvents events(progress, Clock::now(), static_cast<double>(forced));
   model.passInEventHandler(&events);
-  model.branchAndBound();
+  const std::string seconds = std::to_string(options.time_limit);
+  const char* argv[] = {"medax", "-log", "0", "-sec", seconds.c_str(), "-threads", "0", "-solve", "-quit"};
+  CbcMain1(static_cast<int>(std::size(argv)), argv, model);
   Branched out;
   const double* x = model.bestSolution();
-  for (int j = 0; j < model.getNumCols(); ++j)
-    if (x && x[j] > 0.5) out.chosen.push_back(static_cast<Index>(j));
+  for (int j = 0; x && j < model.getNumCols(); ++j)
+    if (x[j] > 0.5) out.chosen.push_back(static_cast<Index>(j));
   if (!x) out.chosen = warm;
   out.proven = model.isProvenOptimal() && !model.isSecondsLimitReached();
   out.bound = model.getBestPossibleObjValue();
@@ -134,7 +142,7 @@ ExactResult solve_exact(const SetCover& cover, const ExactOptions& options, cons
   r.lp_bound = static_cast<double>(p.forced.size()) + lp_relaxation(program);
   r.seconds_lp = seconds_since(t);
   t = Clock::now();
-  const Branched b = branch_and_cut(program, warm, options, progress);
+  const Branched b = branch_and_cut(program, warm, options, progress, p.forced.size());
   r.seconds_solve = seconds_since(t);
   for (Index j : b.chosen) r.chosen.push_back(p.column_of[j]);
   std::sort(r.chosen.begin(), r.chosen.end());

@@ -79,7 +79,7 @@ struct Branched {
 };
 
 /// CBC's standard branch and cut (its command-line driver's default cuts and heuristics, one
-/// thread) from the greedy cover; columns with x > 0.5 (rounded, not truncated).
+/// thread, wall-clock limit) from the greedy cover; columns with x > 0.5 (rounded, not truncated).
 Branched branch_and_cut(OsiClpSolverInterface program, const std::vector<Index>& warm, const ExactOptions& options,
                         const SolveProgress& progress, std::size_t forced) {
   std::vector<std::pair<std::string, double>> start;
@@ -94,7 +94,7 @@ Branched branch_and_cut(OsiClpSolverInterface program, const std::vector<Index>&
   const ProgressEvents events(progress, Clock::now(), static_cast<double>(forced));
   model.passInEventHandler(&events);
   const std::string seconds = std::to_string(options.time_limit);
-  const char* argv[] = {"medax", "-log", "0", "-sec", seconds.c_str(), "-threads", "0", "-solve", "-quit"};
+  const char* argv[] = {"medax", "-log", "0", "-timeMode", "elapsed", "-sec", seconds.c_str(), "-threads", "0", "-solve", "-quit"};
   CbcMain1(static_cast<int>(std::size(argv)), argv, model);
   Branched out;
   const double* x = model.bestSolution();

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <csignal>
 #include <exception>
 #include <new>
 
@@ -57,6 +58,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "error: {}\nRun with --help for more information.\n", e.what());
     return 2;  // usage errors exit 2, not CLI11's own codes
   }
+  // Over a file-size limit (ulimit -f) a write fails with EFBIG and is reported like a full
+  // disk, instead of SIGXFSZ killing medax mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
   // The last catch: whatever escapes a command is reported, never `terminate`.
   try {
     if (plugins->parsed()) return medax::cli::list_plugins();

@@ -24,6 +24,9 @@ int sync_path(const fs::path& path, int flags) {
   return rc;
 }
 
+/// The reason of a failed write, for a message: "No space left on device", "File too large"...
+std::string cause(int err) { return err ? std::strerror(err) : "unknown error (disk full?)"; }
+
 }  // namespace
 
 void write_file_atomic(const fs::path& path, const std::function<void(std::ostream&)>& body) {
@@ -33,12 +36,15 @@ void write_file_atomic(const fs::path& path, const std::function<void(std::ostre
       dir / fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
   try {
     {
+      errno = 0;  // the streams keep no error code: the failed system call's errno names the cause
       std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-      if (!out) throw IoError(fmt::format("{}: cannot create file (does the folder exist and is it writable?)", temp.string()));
+      if (!out)
+        throw IoError(fmt::format("{}: cannot create file: {} (does the folder exist and is it writable?)",
+                                  temp.string(), cause(errno)));
       body(out);
       out.flush();
       out.close();
-      if (!out) throw IoError(fmt::format("{}: write failed (disk full?)", path.string()));
+      if (!out) throw IoError(fmt::format("{}: write failed: {}", path.string(), cause(errno)));
     }
     // The data reaches the disk before the name does: after a crash the target is the old
     // file or the whole new one, never an empty or torn one.

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 
@@ -52,10 +53,23 @@ std::optional<long> staging_pid(const std::string& name, const std::string& targ
   return std::nullopt;
 }
 
-/// True when `pid` is a live process other than this one.
-bool alive_elsewhere(long pid) {
+/// True when `pid` is a running process other than this one (a zombie is dead: in a container
+/// nobody may reap it).
+bool running_elsewhere(long pid) {
   if (pid == ::getpid()) return false;
-  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) return false;
+  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const auto state = line.rfind(") ");  // "pid (comm) S ...": comm may hold spaces and parentheses
+  return state == std::string::npos || (line[state + 2] != 'Z' && line[state + 2] != 'X');
+}
+
+/// True when `pid` still runs after a short grace: a run whose sweep was killed gets SIGKILL
+/// (PR_SET_PDEATHSIG) at that moment, and the resumed sweep may reach its folder before it is gone.
+bool alive_elsewhere(long pid) {
+  for (int i = 0; i < 100 && running_elsewhere(pid); ++i) ::usleep(20000);
+  return running_elsewhere(pid);
 }
 
 /// Files of `dir` that are this process's stdout or stderr (a caller capturing the run's

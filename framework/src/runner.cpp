@@ -48,6 +48,15 @@ std::string utc_time(std::chrono::system_clock::time_point t) {
   return text;
 }
 
+/// Every file in the run folder so far, {relative path: bytes}, for run.json: a reader tells a
+/// complete run from a torn or mixed folder by comparing it with what is there.
+nlohmann::json file_sizes(const fs::path& dir) {
+  nlohmann::json files = nlohmann::json::object();
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files[entry.path().lexically_relative(dir).generic_string()] = entry.file_size();
+  return files;
+}
+
 std::shared_ptr<spdlog::logger> make_logger(const fs::path& log_file, bool quiet) {
   std::vector<spdlog::sink_ptr> sinks;
   sinks.push_back(std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file.string(), true));
@@ -286,6 +295,7 @@ class Run {
     marker["pipeline"] = config_.name;
     marker["started"] = utc_time(started_);
     marker["ended"] = utc_time(std::chrono::system_clock::now());
+    marker["files"] = file_sizes(dir());
     return marker;
   }
 

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include "json_file.hpp"
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 namespace medax {
@@ -73,12 +75,17 @@ pid_t start_job(const SweepConfig& config, const SweepJob& job, const fs::path& 
   sigaddset(&interrupts, SIGINT);
   sigaddset(&interrupts, SIGTERM);
   ::pthread_sigmask(SIG_BLOCK, &interrupts, &old_mask);
+  const pid_t sweep_pid = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
     throw std::runtime_error("cannot start a job process (fork failed)");
   }
   if (pid == 0) {
+    // A sweep killed outright (kill -9) cannot forward anything: its jobs die with it instead of
+    // running on unrecorded, holding their folders against the resumed sweep.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != sweep_pid) std::_Exit(127);  // it died before prctl
     ::setpgid(0, 0);  // (the parent does it too: a signal forwarded at once must find the group)
     ::signal(SIGINT, SIG_DFL);
     ::signal(SIGTERM, SIG_DFL);
@@ -116,6 +123,18 @@ std::string tail_of(const fs::path& file, std::size_t lines) {
   return out;
 }
 
+/// Why a job failed: the error its run recorded in run.json (the whole message, where the last
+/// lines of its output may be only the tail of a multi-line one), else the output's last lines.
+std::string job_error(const fs::path& dir) {
+  const nlohmann::json run = detail::read_json_file(dir / "run.json");
+  if (!run.is_object() || !run.contains("error") || !run["error"].is_string()) return tail_of(dir / "output.txt", 2);
+  std::string error;
+  std::istringstream lines(run["error"].get<std::string>());
+  for (std::string line; std::getline(lines, line);)
+    if (line.find_first_not_of(' ') != std::string::npos) error += (error.empty() ? "" : " | ") + line;
+  return error;
+}
+
 /// Writes status.json; returns its `status`.
 std::string record_status(const SweepJob& job, const fs::path& dir, int wait_status, bool timed_out, double seconds,
                           const SweepConfig& config, const Stop& stop) {
@@ -146,7 +165,7 @@ std::string record_status(const SweepJob& job, const fs::path& dir, int wait_sta
     status["exit_code"] = code;
     state = code == 0 ? "ok" : "failed";
     if (code != 0) {
-      std::string error = tail_of(dir / "output.txt", 2);
+      std::string error = job_error(dir);
       // An allocation refused under the memory limit surfaces as bad_alloc.
       if (config.limits.memory_mib > 0 && error.find("bad_alloc") != std::string::npos)
         state = "memory", error = fmt::format("over the {} MiB memory limit: {}", config.limits.memory_mib, error);

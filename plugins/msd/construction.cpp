@@ -374,27 +374,54 @@ std::pair<std::vector<Vec3>, std::vector<Index>> path_on_mesh(const Builder& b, 
   return {points, facets};
 }
 
-/// The point of the polyline nearest to x, with the facet of its part.
-MeshPoint project_on_polyline(const std::vector<Vec3>& points, const std::vector<Index>& facets, const Vec3& x) {
+/// The point of the polyline nearest to x, with the facet of its part and its arc length
+/// from the start.
+std::pair<MeshPoint, double> project_on_polyline(const std::vector<Vec3>& points, const std::vector<Index>& facets,
+                                                 const Vec3& x) {
   MeshPoint best;
   best.distance = std::numeric_limits<double>::infinity();
+  double arc = 0, best_arc = 0;
   for (std::size_t k = 0; k + 1 < points.size(); ++k) {
     const Vec3 d = points[k + 1] - points[k];
     const double t = d.squaredNorm() > 0 ? std::clamp((x - points[k]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
     const Vec3 p = points[k] + t * d;
-    if ((p - x).norm() < best.distance) best = {p, facets[k], (p - x).norm()};
+    if ((p - x).norm() < best.distance) best = {p, facets[k], (p - x).norm()}, best_arc = arc + t * d.norm();
+    arc += d.norm();
   }
-  return best;
+  return {best, best_arc};
+}
+
+/// The point at arc length `target` along the polyline, with the facet of its part.
+MeshPoint point_at_arc(const std::vector<Vec3>& points, const std::vector<Index>& facets, double target) {
+  for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+    const double length = (points[k + 1] - points[k]).norm();
+    if (target <= length && length > 0) return {points[k] + (target / length) * (points[k + 1] - points[k]), facets[k], 0};
+    target -= length;
+  }
+  return {points.back(), facets.back(), 0};
+}
+
+/// Where step e splits an edge: its midpoint projected onto the M path between its ends, or,
+/// when that lands in the first or last quarter of the path (a path that winds away from the
+/// straight edge, where the projection would not shorten the parts), the path's middle.
+MeshPoint split_point(const std::vector<Vec3>& path, const std::vector<Index>& facets, const Vec3& midpoint) {
+  double total = 0;
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) total += (path[k + 1] - path[k]).norm();
+  const auto [projected, arc] = project_on_polyline(path, facets, midpoint);
+  if (arc >= 0.25 * total && arc <= 0.75 * total) return projected;
+  return point_at_arc(path, facets, 0.5 * total);
 }
 
 /// Step e for one edge: the vertices of its revision, u first, v last.
 std::vector<Index> bisect_until_inside(Builder& b, Index u, Index v, int depth) {
   if (!b.surface.crosses(b.points[u], b.points[v])) return {u, v};
   const auto [path, facets] = path_on_mesh(b, u, v);
-  const auto m = project_on_polyline(path, facets, 0.5 * (b.points[u] + b.points[v]));
   const double too_close = 1e-9 * (b.points[u] - b.points[v]).norm();
-  if (depth >= b.options.max_bisection_depth || (m.point - b.points[u]).norm() <= too_close ||
-      (m.point - b.points[v]).norm() <= too_close) {
+  auto at_an_end = [&](const MeshPoint& m) {
+    return (m.point - b.points[u]).norm() <= too_close || (m.point - b.points[v]).norm() <= too_close;
+  };
+  const auto m = split_point(path, facets, 0.5 * (b.points[u] + b.points[v]));
+  if (depth >= b.options.max_bisection_depth || at_an_end(m)) {
     ++b.stats.unresolved_edges;
     return {u, v};
   }

@@ -5,6 +5,7 @@
 #include <CbcEventHandler.hpp>
 #include <CbcModel.hpp>
 #include <CbcSolver.hpp>
+#include <ClpSolve.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <OsiClpSolverInterface.hpp>
 
@@ -37,6 +38,12 @@ OsiClpSolverInterface set_cover_program(const SetCover& cover) {
   const std::vector<double> row_lower(cover.rows, 1.0), row_upper(cover.rows, COIN_DBL_MAX);
   OsiClpSolverInterface program;
   program.messageHandler()->setLogLevel(0);
+  // Dual simplex without presolve for the initial LP: Clp's automatic choice (Idiot crash and
+  // crossover) crashes on some of these programs (CBC 2.10.8, seen on joint.off).
+  ClpSolve lp_options;
+  lp_options.setSolveType(ClpSolve::useDual);
+  lp_options.setPresolveType(ClpSolve::presolveOff);
+  program.setSolveOptions(lp_options);
   program.loadProblem(matrix, lower.data(), upper.data(), cost.data(), row_lower.data(), row_upper.data());
   for (std::size_t j = 0; j < n; ++j) program.setInteger(static_cast<int>(j));
   return program;

@@ -159,6 +159,44 @@ TEST_CASE("a slab's planar medial sheet with 3 sites gives one triangle") {
   for (std::size_t p = 0; p < cells.size(); ++p) CHECK(cells[p].polygon == s.pieces[p].polygon);
 }
 
+TEST_CASE("4 cocircular sites meet at one point of the sheet: a polygon, fan-triangulated") {
+  const auto surface = testing::make_box(0.5, 0.5, 0.05, 4);
+  const SurfaceCrossing crossing(surface);
+  const auto sheet = square_sheet(0.45, 8);  // a grid vertex at the origin, on both bisectors
+  const std::vector<Vec3> sites{{-0.2, -0.2, 0}, {0.2, -0.2, 0}, {0.2, 0.2, 0}, {-0.2, 0.2, 0}};
+  const auto s = construct_skeleton(sheet, sites, crossing);
+  check_invariants(s, sheet, surface, crossing, 4);
+  CHECK(s.stats.polygons == 1);
+  REQUIRE(s.triangles.size() == 2);
+  double area = 0;
+  for (const auto& t : s.triangles) area += 0.5 * (s.vertices[t[1]] - s.vertices[t[0]]).cross(s.vertices[t[2]] - s.vertices[t[0]]).norm();
+  CHECK(area == Approx(0.4 * 0.4));  // the two triangles tile the square of the sites
+  CHECK(s.edges.empty());
+}
+
+TEST_CASE("a closed tetrahedron in the RDT is thinned by its smallest face") {
+  // M a closed sphere (a test complex, not a medial axis), S a larger sphere around it: the 4
+  // cells of 4 sites meet pairwise and by threes, so the RDT is the closed tetrahedron.
+  const auto surface = testing::make_sphere(2.0, 2);
+  const SurfaceCrossing crossing(surface);
+  const auto ball = testing::make_sphere(1.0, 3);
+  const MedialMesh shell(ball.vertices, ball.faces, {});
+  const std::vector<Vec3> sites{Vec3(1, 1, 1).normalized(), Vec3(1, -1, -1).normalized(), Vec3(-1, 1, -0.6).normalized(),
+                                Vec3(-1, -1, 1.3).normalized()};
+  const auto s = construct_skeleton(shell, sites, crossing);
+  check_invariants(s, shell, surface, crossing, 4);
+  CHECK(s.stats.tetrahedra_thinned == 1);
+  REQUIRE(s.triangles.size() == 3);
+  // The missing face is the smallest of the four.
+  auto area = [&](Index a, Index b, Index c) { return (s.vertices[b] - s.vertices[a]).cross(s.vertices[c] - s.vertices[a]).norm(); };
+  std::set<Tri> all{{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (const auto& t : s.triangles) all.erase(t);
+  REQUIRE(all.size() == 1);
+  const Tri gone = *all.begin();
+  for (const auto& t : s.triangles) CHECK(area(gone[0], gone[1], gone[2]) < area(t[0], t[1], t[2]));
+  CHECK(services::complex_topology(s.vertices.size(), s.edges, s.triangles).b2 == 0);
+}
+
 TEST_CASE("an orphan component of a cell goes to its neighbour: a hairpin keeps a path skeleton") {
   // Lower arm y = -0.15, bend x = 0.5, upper arm y = 0.15. Site 0's Voronoi cell also holds the
   // upper arm's end (x < -0.34), which touches M only through site 2's part: an orphan.

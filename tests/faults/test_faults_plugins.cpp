@@ -38,7 +38,7 @@ void check_isolated(const fs::path& folder, const std::string& broken, const std
 
 }  // namespace
 
-TEST_CASE("a truncated plugin, cut anywhere, is named as truncated; the others still work", "[faults][plugins]") {
+TEST_CASE("a truncated plugin, cut anywhere, is named as truncated, the others still work", "[faults][plugins]") {
   const auto dir = scratch_dir("faults_plugin_truncated");
   const std::string good = read_text(kGoodSo);
   for (const std::size_t cut : {std::size_t{1}, std::size_t{63}, std::size_t{64}, std::size_t{600}, good.size() / 3,
@@ -56,7 +56,7 @@ TEST_CASE("a zero-byte .so, a text file named .so and an executable named .so ar
   check_isolated(folder_with(dir, "exe", read_text("/bin/true")), "libbroken.so", "cannot be loaded", dir);
 }
 
-TEST_CASE("a plugin built for another ABI is named with both ABIs; the others still work", "[faults][plugins]") {
+TEST_CASE("a plugin built for another ABI is named with both ABIs, the others still work", "[faults][plugins]") {
   const auto dir = scratch_dir("faults_plugin_abi");
   const fs::path folder = folder_with(dir, "abi", "");
   fs::remove(folder / "libbroken.so");

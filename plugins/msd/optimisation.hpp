@@ -1,0 +1,122 @@
+#pragma once
+// Global optimisation of the Medial Skeletal Diagram (paper §5.3, Eq. 8, Alg. 1; notes §2.7,
+// §3 S2, S5, S6, §9.5–9.6): sites on the medial mesh M start at a farthest-point selection on M's
+// graph distances; Nelder–Mead (NLopt) moves the free sites to minimise
+//   E = E_cov + c1 E_cent + c2 E_count,
+// each trial point projected onto M, the skeleton constructed (S3) and every element fitted (S4,
+// fits of unchanged elements cached); between rounds, new free sites are put at the volume
+// centres of the largest uncovered regions of S and the old ones frozen.
+#include "construction.hpp"
+#include "coverage.hpp"
+#include "fitting.hpp"
+#include "medial_mesh.hpp"
+#include "target_mesh.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace medax::msd {
+
+/// How a trial point becomes a site on M.
+enum class Projection {
+  ClosestPoint,   ///< the closest point of M (paper, Alg. 1)
+  FacetCentroid,  ///< the centroid of M's closest facet; two sites on one facet are rejected ([C])
+};
+
+struct OptimisationOptions {
+  std::size_t initial_sites = 10;   ///< |V⁽⁰⁾| (paper: 10)
+  Index start_vertex = 0;           ///< first farthest-point vertex of M ([C]: 0)
+  double centroid_weight = 1;       ///< c1
+  double count_weight = 1e-3;       ///< c2
+  Projection projection = Projection::ClosestPoint;
+  double min_site_distance = 1e-2;  ///< sites closer than this (unit box) reject the trial ([C])
+  int first_iterations = 50;        ///< energy evaluations of the first round
+  int add_every = 30;               ///< energy evaluations of every later round
+  std::size_t add_count = 3;        ///< sites added per round (paper: 3 or 5)
+  int stall = 5;                    ///< evaluations without decrease that end a round
+  int max_iterations = 300;         ///< energy evaluations in all
+  double xtol = 1e-2;               ///< Nelder–Mead xtol_abs (unit box)
+  std::string tetgen_switches = "pq1.05";  ///< [C]'s tetrahedralisation of S
+  FitOptions fit;
+  CoverageOptions coverage;
+  ConstructionOptions construction;
+};
+
+/// The terms of Eq. 8 for one site set.
+struct Energy {
+  double total = 0;
+  double coverage = 0;  ///< E_cov ∈ [−1, 0]
+  double centroid = 0;  ///< E_cent = Σ ‖v − c(RVC(v))‖² in unit-box units
+  double count = 0;     ///< E_count = |V̂| − |V|
+  bool rejected = false;
+  std::string rejection;  ///< why (sites too close, one facet, construction failed)
+};
+
+/// One evaluated site set: the diagram and its energy.
+struct Diagram {
+  std::vector<Vec3> sites;  ///< on M
+  Skeleton skeleton;
+  std::vector<SkeletonElement> elements;  ///< V̂, then Ê, then F̂
+  std::vector<Primitive> primitives;      ///< one per element, same order
+  Coverage coverage;
+  Energy energy;
+};
+
+/// What Table 1 reports, per energy evaluation.
+struct IterationLog {
+  int iteration = 0;  ///< energy evaluations so far (1-based)
+  int round = 0;
+  std::size_t sites = 0;
+  std::size_t fitted = 0;  ///< primitives fitted (not from the cache)
+  Energy energy;
+  double best = 0;  ///< best energy so far
+  double seconds_projection = 0, seconds_construction = 0, seconds_fitting = 0, seconds_energy = 0;
+};
+
+struct OptimisationResult {
+  Diagram best;
+  std::vector<IterationLog> log;
+  int rounds = 0;
+  std::string stop_reason;
+  double seconds_tetrahedralisation = 0;
+  std::size_t tets = 0;
+};
+
+/// The skeleton's elements: every vertex, every unique edge, every triangle.
+std::vector<SkeletonElement> skeleton_elements(const Skeleton& skeleton);
+
+/// Projects points onto M as `projection` says.
+std::vector<Vec3> project_sites(const MedialMesh& medial, const std::vector<Vec3>& points, Projection projection);
+
+/// Evaluates Eq. 8 for site sets, keeping fits of unchanged elements between calls.
+class EnergyEvaluator {
+ public:
+  EnergyEvaluator(const TargetMesh& target, const MedialMesh& medial, const SurfaceCrossing& crossing,
+                  const OptimisationOptions& options);
+  ~EnergyEvaluator();
+  /// Sites = frozen ∪ project(free); fills `log`'s timings and counts when given.
+  Diagram evaluate(const std::vector<Vec3>& frozen, const std::vector<Vec3>& free, IterationLog* log = nullptr);
+  /// Drops cached fits not used by the last two evaluations nor by `keep`.
+  void trim_cache(const Diagram& keep);
+
+ private:
+  std::vector<Primitive> fit(const std::vector<SkeletonElement>& elements, std::size_t& fitted);
+  struct Cache;
+  const TargetMesh& target_;
+  const MedialMesh& medial_;
+  const SurfaceCrossing& crossing_;
+  OptimisationOptions options_;
+  std::unique_ptr<Cache> cache_;
+};
+
+/// E_cent: squared distances of the sites to the centroids of their restricted Voronoi cells.
+double centroid_energy(const std::vector<Vec3>& sites, const std::vector<RvdPiece>& pieces);
+
+/// The whole schedule (S2, S5, S6). `on_iteration` is called after every energy evaluation;
+/// `cancelled` is polled there and ends the run by throwing medax::Cancelled.
+OptimisationResult optimise(const TargetMesh& target, const MedialMesh& medial, const OptimisationOptions& options,
+                            const std::function<void(const IterationLog&)>& on_iteration = {},
+                            const std::function<bool()>& cancelled = {});
+
+}  // namespace medax::msd

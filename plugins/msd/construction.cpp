@@ -646,6 +646,19 @@ std::vector<RvdPiece> restricted_voronoi(const MedialMesh& mesh, const std::vect
   return out;
 }
 
+std::vector<Vec3> cell_centroids(const std::vector<RvdPiece>& pieces, std::size_t num_sites) {
+  std::vector<Vec3> weighted(num_sites, Vec3::Zero());
+  std::vector<double> measure(num_sites, 0);
+  std::vector<char> has_area(num_sites, 0);
+  for (const auto& p : pieces) has_area[p.cell] |= p.polygon.size() >= 3;
+  for (const auto& p : pieces)
+    if (has_area[p.cell] == (p.polygon.size() >= 3)) weighted[p.cell] += p.measure * p.centroid, measure[p.cell] += p.measure;
+  std::vector<Vec3> out(num_sites);
+  for (std::size_t c = 0; c < num_sites; ++c)
+    out[c] = measure[c] > 0 ? Vec3(weighted[c] / measure[c]) : Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  return out;
+}
+
 Skeleton construct_skeleton(const MedialMesh& mesh, const std::vector<Vec3>& sites, const SurfaceCrossing& surface,
                             const ConstructionOptions& options) {
   ConstructionStats stats;

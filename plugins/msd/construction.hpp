@@ -90,4 +90,9 @@ Skeleton construct_skeleton(const MedialMesh& mesh, const std::vector<Vec3>& sit
 /// Steps a–b only: the restricted Voronoi pieces of M with their (one-component) cells.
 std::vector<RvdPiece> restricted_voronoi(const MedialMesh& mesh, const std::vector<Vec3>& sites);
 
+/// The centroid c(RVC) of each cell (E_cent, notes §2.7): area-weighted over its triangle
+/// pieces, or length-weighted over its dangling-edge pieces when it has no triangle piece.
+/// A cell without pieces gets NaN.
+std::vector<Vec3> cell_centroids(const std::vector<RvdPiece>& pieces, std::size_t num_sites);
+
 }  // namespace medax::msd

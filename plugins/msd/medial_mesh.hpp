@@ -55,7 +55,8 @@ class MedialMesh {
   std::vector<Index> facet_edges(Index facet) const;
 
   /// Shortest-path (Dijkstra) distance between vertices on M's vertex graph, edges weighted by
-  /// length. All pairs are cached at construction when |V| <= kAllPairsLimit.
+  /// length. All pairs (distances and predecessors, 12 bytes a pair: 48 MB at the limit) are
+  /// cached at construction when |V| <= kAllPairsLimit; above it each query runs Dijkstra.
   double distance(Index a, Index b) const;
   /// Graph distances from one vertex to all.
   std::vector<double> distances_from(Index source) const;
@@ -65,7 +66,7 @@ class MedialMesh {
   /// The closest point of M (triangles and dangling edges) to p.
   MeshPoint closest_point(const Vec3& p) const;
 
-  static constexpr std::size_t kAllPairsLimit = 3000;
+  static constexpr std::size_t kAllPairsLimit = 2000;
 
  private:
   void build_incidence();

@@ -157,6 +157,14 @@ TEST_CASE("a slab's planar medial sheet with 3 sites gives one triangle") {
   const auto cells = restricted_voronoi(sheet, sites);
   REQUIRE(cells.size() == s.pieces.size());
   for (std::size_t p = 0; p < cells.size(); ++p) CHECK(cells[p].polygon == s.pieces[p].polygon);
+  // Each cell is the square cut by a convex Voronoi region: its centroid lies in its own region.
+  const auto centroids = cell_centroids(cells, sites.size());
+  for (std::size_t c = 0; c < sites.size(); ++c)
+    for (std::size_t j = 0; j < sites.size(); ++j) CHECK((centroids[c] - sites[c]).norm() <= (centroids[c] - sites[j]).norm());
+  // Two sites split the sheet at y = 0.1: the upper cell is the band 0.1 <= y <= 0.45.
+  const auto bands = cell_centroids(restricted_voronoi(sheet, {{0, -0.1, 0}, {0, 0.3, 0}}), 2);
+  CHECK(bands[1].y() == Approx((0.1 + 0.45) / 2));
+  CHECK(bands[1].x() == Approx(0).margin(1e-12));
 }
 
 TEST_CASE("4 cocircular sites meet at one point of the sheet: a polygon, fan-triangulated") {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <string>
 #include <stdexcept>
 
 namespace medax::coverage_axis {
@@ -41,6 +42,20 @@ CoverageMatrix timed_matrix(const std::vector<Vec3>& samples, const Balls& balls
                          "(raise `dilation` or `candidate_count` to cover them)",
                          m.uncoverable, samples.size()));
   return m;
+}
+
+/// The closing log line: the count, the certificate (exact mode) and the time per phase.
+std::string summary(const Selection& s) {
+  if (s.mode == "greedy")
+    return fmt::format("{} spheres selected; times: candidates {:.2f} s, matrix {:.2f} s, greedy {:.2f} s",
+                       s.objective, s.seconds_candidates, s.seconds_matrix, s.seconds_solve);
+  const std::string certificate =
+      s.proven_optimal ? fmt::format("proven optimal (LP bound {:.2f})", s.lp_bound)
+                       : fmt::format("NOT proven optimal: lower bound {:.2f}, gap {:.1f}%", s.lower_bound, 100 * s.gap);
+  return fmt::format("{} spheres selected, {}; times: candidates {:.2f} s, matrix {:.2f} s, presolve {:.2f} s, "
+                     "LP {:.2f} s, branch and cut {:.2f} s",
+                     s.objective, certificate, s.seconds_candidates, s.seconds_matrix, s.seconds_presolve,
+                     s.seconds_lp, s.seconds_solve);
 }
 
 }  // namespace
@@ -170,16 +185,7 @@ void CoverageAxisStage::measure(const Shape& shape, MedialComplex& medial, Conte
   if (out.marked < out.objective)
     ctx.warn(fmt::format("the complex has {} vertices, fewer than the {} selected spheres; all are marked",
                          medial.num_vertices(), out.objective));
-  ctx.info(fmt::format("{} spheres selected{}; times: candidates {:.2f} s, matrix {:.2f} s, presolve {:.2f} s, "
-                       "LP {:.2f} s, solve {:.2f} s",
-                       out.objective,
-                       mode_ == Mode::Greedy ? std::string()
-                       : out.proven_optimal
-                           ? fmt::format(", proven optimal (LP bound {:.2f})", out.lp_bound)
-                           : fmt::format(", NOT proven optimal: lower bound {:.2f}, gap {:.1f}%", out.lower_bound,
-                                         100 * out.gap),
-                       out.seconds_candidates, out.seconds_matrix, out.seconds_presolve, out.seconds_lp,
-                       out.seconds_solve));
+  ctx.info(summary(out));
   ctx.publish(kSelection, std::move(out));
 }
 

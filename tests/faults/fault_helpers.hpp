@@ -14,6 +14,8 @@
 
 #include <cerrno>
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <cstring>
 #include <map>
 #include <random>
@@ -45,6 +47,24 @@ inline Ending run_and_kill(const std::vector<std::string>& args, const std::stri
   std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
   ::kill(pid, sig);  // the zombie of a finished child ignores it
   Ending ending;
+  REQUIRE(::waitpid(pid, &ending.status, 0) == pid);
+  return ending;
+}
+
+/// Starts `medax ARGS`, sends `sig` as soon as `log(pid)` contains `text` (or when it ends) and waits.
+template <typename LogOf>
+Ending run_and_kill_at(const std::vector<std::string>& args, const std::string& plugin_path,
+                       const std::filesystem::path& dir, int sig, LogOf log, const std::string& text) {
+  const pid_t pid = spawn_medax(args, plugin_path, dir);
+  Ending ending;
+  for (int polls = 0; polls < 20000; ++polls) {  // at most ~20 s
+    if (::waitpid(pid, &ending.status, WNOHANG) == pid) return ending;  // it ended before the line
+    std::ifstream in(log(pid));
+    const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (content.find(text) != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ::kill(pid, sig);
   REQUIRE(::waitpid(pid, &ending.status, 0) == pid);
   return ending;
 }

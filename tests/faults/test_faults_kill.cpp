@@ -101,6 +101,34 @@ TEST_CASE("a run killed at random moments leaves the previous run or a complete 
   }
 }
 
+TEST_CASE("a run killed as it publishes leaves the previous run or the complete new one", "[faults][kill]") {
+  // The last stage's "done" line: what follows is the outputs, run.json and the exchange of folders.
+  const auto dir = scratch_dir("faults_kill_publish");
+  const fs::path out = dir / "runs" / "out";
+  int seed = 200;
+  for (const int sig : {SIGKILL, SIGTERM, SIGINT}) {
+    for (int round = 0; round < 3; ++round) {
+      const auto previous = write_text(dir / "previous.yaml", sleepy_pipeline(++seed, 0));
+      REQUIRE(run_medax("run '" + previous.string() + "' --out '" + out.string() + "' --quiet", kPlugins, dir).code == 0);
+      write_text(out / "previous_only.txt", "added to the previous run\n");
+      const auto before = snapshot(out);
+      const auto file = write_text(dir / "p.yaml", sleepy_pipeline(++seed, 0));
+      INFO("signal " << sig << ", round " << round);
+      const auto staging_log = [&](pid_t pid) {
+        return out.parent_path() / ("out.partial-" + std::to_string(pid)) / "log.txt";
+      };
+      const Ending e = run_and_kill_at({"run", file.string(), "--out", out.string(), "--quiet"}, kPlugins, dir, sig,
+                                       staging_log, "(test_count) done");
+      check_signal_ending(e, sig);
+      check_after_fault(out, before, seed);
+      const auto next = write_text(dir / "next.yaml", sleepy_pipeline(++seed, 0));
+      REQUIRE(run_medax("run '" + next.string() + "' --out '" + out.string() + "' --quiet", kPlugins, dir).code == 0);
+      check_complete_run(out);
+      CHECK(debris(dir / "runs").empty());
+    }
+  }
+}
+
 TEST_CASE("a sweep killed at random moments and resumed gives the uninterrupted sweep's results", "[faults][kill][sweep]") {
   const auto dir = scratch_dir("faults_kill_sweep");
   const std::string sweep = sleepy_pipeline(7, 0) + "sweep:\n  test_sleep.seconds: [0.05, 0.1, 0.15, 0.2, 0.25]\n";

@@ -101,7 +101,8 @@ Branched branch_and_cut(OsiClpSolverInterface program, const std::vector<Index>&
   const ProgressEvents events(progress, Clock::now(), static_cast<double>(forced));
   model.passInEventHandler(&events);
   const std::string seconds = std::to_string(options.time_limit);
-  const char* argv[] = {"medax", "-log", "0", "-timeMode", "elapsed", "-sec", seconds.c_str(), "-threads", "0", "-solve", "-quit"};
+  const char* argv[] = {"medax",   "-log", "0", "-timeMode", "elapsed", "-sec", seconds.c_str(),
+                        "-threads", "0",   "-solve", "-quit"};
   CbcMain1(static_cast<int>(std::size(argv)), argv, model);
   Branched out;
   const double* x = model.bestSolution();

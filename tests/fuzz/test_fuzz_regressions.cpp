@@ -83,6 +83,10 @@ TEST_CASE("the fixed findings are refused with the reason and the place", "[fuzz
                     Catch::Contains("line 3: 'e0t' is not a PLY header line"));
   CHECK_THROWS_WITH(read_mesh(regressions / "ply_binary" / "ub_property_before_element.ply"),
                     Catch::Contains("line 3: 'l0ement' is not a PLY header line"));
+  // A second format line: the checks walked the body as little-endian, CGAL as big-endian, and
+  // looped over a list count of 2^31 (a timeout).
+  CHECK_THROWS_WITH(read_mesh(regressions / "ply_binary" / "timeout_second_format_line.ply"),
+                    Catch::Contains("line 3: line 2 and only line 2 is 'format"));
   CHECK_THROWS_WITH(read_mesh(scratch_file("early.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n")),
                     Catch::Contains("early.ply: line 3: a property comes before any 'element' line"));
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for the conditioning tests: the shared real meshes and their manifest facts, small
+// Helpers for the conditioning tests: the real meshes' facts (datasets/meshcheck.jsonl), small
 // hand-made broken meshes, and a registry holding the conditioning plugin.
 #include <test_paths.hpp>
 
@@ -19,11 +19,12 @@
 
 namespace medax::test {
 
-/// meshcheck.jsonl: the "meshcheck" object of every file, by its path relative to the folder.
+/// datasets/meshcheck.jsonl (the team's independent checker on the shared set): the "meshcheck"
+/// object of every file, by its name in datasets/meshes.tsv.
 inline const std::map<std::string, nlohmann::json>& manifest_checks() {
   static const std::map<std::string, nlohmann::json> checks = [] {
     std::map<std::string, nlohmann::json> out;
-    std::ifstream in(shared_meshes_dir() / "meshcheck.jsonl");
+    std::ifstream in(source_dir() / "datasets" / "meshcheck.jsonl");
     std::string line;
     while (std::getline(in, line)) {
       if (line.empty()) continue;
@@ -35,7 +36,7 @@ inline const std::map<std::string, nlohmann::json>& manifest_checks() {
   return checks;
 }
 
-/// A mesh's file name relative to the shared folder ("cow.off" -> "bad/cow.off" when in bad/).
+/// A mesh's name in the manifest ("cow.off" -> "bad/cow.off" when in a bad/ folder).
 inline std::string manifest_key(const std::filesystem::path& path) {
   const std::string name = path.filename().string();
   return path.parent_path().filename() == "bad" ? "bad/" + name : name;

@@ -31,9 +31,11 @@ void check_on_surface(const SurfaceMesh& mesh, const OrientedSamples& s) {
 }  // namespace
 
 TEST_CASE("Poisson-disk by count: exact count, on the surface, blue-noise minimum distance", "[sampling]") {
-  for (const char* name : {"sphere.obj", "fandisk.off", "sword.obj"}) {
-    INFO(name);
-    const SurfaceMesh mesh = read_mesh(test::shared_meshes_dir() / name);
+  // A round, a CAD and a thin shape (turbine: a thin flanged housing).
+  for (const auto& path : {test::data_dir() / "sphere.obj", test::corpus_mesh("fandisk.off"),
+                           test::corpus_mesh("turbine.off")}) {
+    INFO(path.filename().string());
+    const SurfaceMesh mesh = read_mesh(path);
     std::mt19937_64 rng(7);
     const std::size_t n = 3000;
     const OrientedSamples s = sample_poisson_count(mesh, n, rng);
@@ -50,9 +52,10 @@ TEST_CASE("Poisson-disk by count: exact count, on the surface, blue-noise minimu
 }
 
 TEST_CASE("Poisson-disk by radius: no two samples closer than the radius", "[sampling]") {
-  for (const char* name : {"ellipsoid.off", "fandisk.off", "sword.obj"}) {
-    INFO(name);
-    const SurfaceMesh mesh = read_mesh(test::shared_meshes_dir() / name);
+  for (const auto& path : {test::data_dir() / "ellipsoid.off", test::corpus_mesh("fandisk.off"),
+                           test::corpus_mesh("turbine.off")}) {
+    INFO(path.filename().string());
+    const SurfaceMesh mesh = read_mesh(path);
     const double area = surface_area(mesh);
     const double r = poisson_packing_distance(area, 2000) * 0.7;
     std::mt19937_64 rng(3);

@@ -55,9 +55,10 @@ TEST_CASE("the conditioning plugin registers normalize, repair and sample", "[st
 
 TEST_CASE("normalize: unit diagonal or longest side, centred, and to_input maps back exactly", "[stages]") {
   const std::string mode = GENERATE(as<std::string>{}, "diagonal", "max_side");
-  for (const char* name : {"armadillo.off", "cheese.off", "fertility.off", "plane.obj"}) {
+  // Organic, high-genus, CAD and thin shapes of different scales (bbox diagonals 229 to 0.17).
+  for (const char* name : {"armadillo.off", "cheese.off", "anchor.off", "turbine.off"}) {
     INFO(name << " " << mode);
-    Shape shape = test::shape_of(test::shared_meshes_dir() / name);
+    Shape shape = test::shape_of(test::corpus_mesh(name));
     // A frame already moved by an earlier stage: normalize composes with it.
     shape.to_input = Similarity{2.5, Vec3(1, -2, 3)};
     std::mt19937_64 rng(1);
@@ -105,24 +106,28 @@ TEST_CASE("normalize refuses a shape without extent", "[stages]") {
   CHECK_THROWS_AS(stage->prepare(point), std::invalid_argument);
 }
 
-TEST_CASE("repair refuses each broken shared mesh, naming its problems and their fixes", "[stages]") {
-  const auto dir = test::shared_meshes_dir() / "bad";
+// The counts of the CGAL meshes are exact counts on the files (see test_mesh_check.cpp).
+TEST_CASE("repair refuses each broken mesh, naming its problems and their fixes", "[stages]") {
   {
-    const std::string text = refusal(dir / "stanford-bunny.obj");
+    const std::string text = refusal(test::corpus_mesh("bad/pig.off"));
     INFO(text);
-    CHECK(text.rfind("refusing stanford-bunny.obj", 0) == 0);  // the runner puts "repair: " before it
-    CHECK(contains(text, "5 boundary loops (holes; 223 boundary edges): run `repair` with fill_holes: true"));
-    CHECK(contains(text, "1113 unreferenced vertices"));
-    CHECK_FALSE(contains(text, "self-intersecting"));
+    CHECK(text.rfind("refusing pig.off", 0) == 0);  // the runner puts "repair: " before it
+    CHECK(contains(text, "7 boundary loops (holes; 55 boundary edges): run `repair` with fill_holes: true"));
+    CHECK_FALSE(contains(text, "unreferenced"));
+    CHECK(contains(text, "3 self-intersecting triangle pairs"));  // CGAL self_intersections: 3 too
   }
   {
-    const std::string text = refusal(dir / "birdcage.obj");
+    const std::string text = refusal(test::corpus_mesh("bad/elephant-with-holes.off"));
     INFO(text);
-    CHECK(contains(text, "1386 self-intersecting triangle pairs"));
-    CHECK(contains(text, "remove_self_intersections: true"));
-    CHECK(contains(text, "318 duplicate vertices"));
-    CHECK(contains(text, "638 degenerate faces"));
+    CHECK(contains(text, "65 duplicate vertices"));
+    CHECK(contains(text, "1353 boundary edges"));
   }
+  {
+    const std::string text = refusal(test::corpus_mesh("bad/degtri_sliding.off"));
+    INFO(text);
+    CHECK(contains(text, "4 degenerate faces"));
+  }
+  const auto dir = test::data_dir() / "bad";
   {
     const std::string text = refusal(dir / "thingi10k-68251.stl");
     INFO(text);
@@ -131,33 +136,31 @@ TEST_CASE("repair refuses each broken shared mesh, naming its problems and their
     CHECK(contains(text, "88 self-intersecting triangle pairs"));
   }
   {
-    const std::string text = refusal(dir / "cow.off");
+    const std::string text = refusal(test::corpus_mesh("bad/cow.off"));
     INFO(text);
     CHECK(contains(text, "101 self-intersecting triangle pairs"));
+    CHECK(contains(text, "remove_self_intersections: true"));
     CHECK(contains(text, "1 duplicate vertex"));
     CHECK_FALSE(contains(text, "holes"));
     CHECK_FALSE(contains(text, "non-manifold"));
   }
 }
 
-TEST_CASE("repair with repair: true closes the bunny and refuses the rest with the reason", "[stages]") {
-  const auto dir = test::shared_meshes_dir() / "bad";
+TEST_CASE("repair with repair: true closes pig.off and refuses the rest with the reason", "[stages]") {
   {
     auto stage = test::make_stage("repair", {{"repair", true}});
     test::RecordingContext ctx;
-    const Shape input = test::shape_of(dir / "stanford-bunny.obj");
+    const Shape input = test::shape_of(test::corpus_mesh("bad/pig.off"));
     const Shape out = test::run_stage(*stage, input, ctx).shape;
     const auto check = services::check_mesh(out.mesh);
     CHECK(check.valid_solid());
     CHECK(check.genus == std::optional<long long>(0));
     CHECK(test::bbox_diag(out.mesh) == Approx(test::bbox_diag(input.mesh)).epsilon(0.01));
-    CHECK(ctx.logged("filled 5 holes"));
-    CHECK(ctx.logged("dropped 1113 unreferenced vertices"));
+    CHECK(ctx.logged("filled 7 holes"));
   }
-  // (birdcage takes a second more and fails the same way: see test_mesh_repair.cpp)
-  for (const char* name : {"thingi10k-68251.stl", "cow.off"}) {
-    const std::string text = refusal(dir / name, {{"repair", true}});
-    INFO(name << "\n" << text);
+  for (const auto& path : {test::data_dir() / "bad" / "thingi10k-68251.stl", test::corpus_mesh("bad/cow.off")}) {
+    const std::string text = refusal(path, {{"repair", true}});
+    INFO(path.filename().string() << "\n" << text);
     CHECK(contains(text, "did not give a valid mesh"));
     CHECK(contains(text, "could not remove the self-intersections"));
     CHECK(contains(text, "What remains after repair:"));
@@ -166,12 +169,13 @@ TEST_CASE("repair with repair: true closes the bunny and refuses the rest with t
   }
 }
 
-TEST_CASE("repair passes good shared meshes unchanged", "[stages]") {
+TEST_CASE("repair passes good meshes unchanged", "[stages]") {
   // A varied subset (every good mesh passes the check itself: test_mesh_check.cpp).
   auto stage = test::make_stage("repair");
-  for (const char* name : {"cube.off", "torus.obj", "armadillo.off", "cheese.off", "lamp.obj", "sword.obj"}) {
-    const auto path = test::shared_meshes_dir() / name;
-    INFO(name);
+  for (const auto& path : {test::data_dir() / "cube.off", test::data_dir() / "torus.obj", test::corpus_mesh("armadillo.off"),
+                           test::corpus_mesh("cheese.off"), test::corpus_mesh("couplingdown.off"),
+                           test::corpus_mesh("turbine.off")}) {
+    INFO(path.filename().string());
     test::RecordingContext ctx;
     const Shape input = test::shape_of(path);
     const Shape out = test::run_stage(*stage, input, ctx).shape;
@@ -184,7 +188,7 @@ TEST_CASE("repair passes good shared meshes unchanged", "[stages]") {
 
 TEST_CASE("repair fixes cheap problems without being asked, and logs them", "[stages]") {
   SECTION("inward orientation") {
-    Shape shape = test::shape_of(test::shared_meshes_dir() / "spot.obj");
+    Shape shape = test::shape_of(test::source_dir() / "pipelines" / "meshes" / "spot.obj");
     const SurfaceMesh original = shape.mesh;
     shape.mesh = test::reversed(shape.mesh);
     auto stage = test::make_stage("repair");
@@ -229,7 +233,7 @@ TEST_CASE("repair checks its parameters and input before any work", "[stages]") 
 }
 
 TEST_CASE("sample: every method gives unit normals on the surface and areas summing to its area", "[stages]") {
-  const SurfaceMesh mesh = read_mesh(test::shared_meshes_dir() / "sphere.obj");
+  const SurfaceMesh mesh = read_mesh(test::data_dir() / "sphere.obj");
   const services::SurfaceDistance distance(mesh);
   const auto face_normals = services::face_normals(mesh);
   const double area = services::surface_area(mesh);
@@ -257,7 +261,7 @@ TEST_CASE("sample: every method gives unit normals on the surface and areas summ
 
 TEST_CASE("sample: the same seed gives the same samples", "[stages]") {
   Shape shape;
-  shape.mesh = read_mesh(test::shared_meshes_dir() / "bunny.obj");
+  shape.mesh = read_mesh(test::corpus_mesh("elephant.off"));
   for (const std::string method : {"uniform", "poisson"}) {
     INFO(method);
     auto stage = test::make_stage("sample", {{"method", method}, {"count", 1000LL}});
@@ -274,7 +278,7 @@ TEST_CASE("sample: the same seed gives the same samples", "[stages]") {
 
 TEST_CASE("sample: Poisson-disk respects its minimum distance", "[stages]") {
   Shape shape;
-  shape.mesh = read_mesh(test::shared_meshes_dir() / "hand.obj");
+  shape.mesh = read_mesh(test::corpus_mesh("extra/hand.off"));
   const double area = services::surface_area(shape.mesh);
   SECTION("by count: exact count, at least 0.6 of the packing spacing") {
     auto stage = test::make_stage("sample", {{"count", 4000LL}});

@@ -4,7 +4,7 @@
 //
 //   durix_real_meshes [--eps 0.01] [--method dzm07|remesh] [--no-fallback]
 //                     [--facet-size 0.6] [--facet-distance 0.001] [MESH_OR_FOLDER ...]
-//                     (default: ../shared/data/meshes)
+//                     (default: the corpus folder data/meshes; scripts/fetch-meshes.sh)
 #include "durix.hpp"
 #include "remesh_fallback.hpp"
 
@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
     else if (a == "--facet-distance" && i + 1 < argc) options.remesh.facet_distance = std::stod(argv[++i]);
     else inputs.emplace_back(a);
   }
-  if (inputs.empty()) inputs.emplace_back(MEDAX_SHARED_MESHES_DIR);
+  if (inputs.empty()) inputs.emplace_back(MEDAX_CORPUS_DIR);
   std::vector<fs::path> files;
   for (const fs::path& in : inputs) {
     if (fs::is_directory(in)) {

@@ -1,6 +1,6 @@
-// Real meshes (../shared/data/meshes): the interior-Voronoi medial complexes (the `voronoi`
-// plugin's algorithm when it is built, else the test stand-in) of fertility (genus 4), hand,
-// armadillo and knot through ET, the medial curves and the skeletons: element counts
+// Real meshes of the Debian corpus (datasets/meshes.tsv): the interior-Voronoi medial complexes
+// (the `voronoi` plugin's algorithm when it is built, else the test stand-in) of elephant (genus 3),
+// fandisk, armadillo and knot through ET, the medial curves and the skeletons: element counts
 // before and after (printed), topology kept, a point or g cycles when theta1 = theta2 = inf.
 #include "erosion_thickness.hpp"
 #include "pure_complex.hpp"
@@ -32,9 +32,7 @@ struct RealComplex {
 };
 
 RealComplex load(const char* name) {
-  const auto path = test::shared_meshes_dir() / name;
-  if (!std::filesystem::exists(path)) return {};
-  const SurfaceMesh mesh = read_mesh(path);
+  const SurfaceMesh mesh = read_mesh(test::corpus_mesh(name));
   RealComplex r;
   Vec3 lo = mesh.vertices[0], hi = lo;
   for (const Vec3& p : mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -63,10 +61,6 @@ void require_same(const ComplexTopology& a, const ComplexTopology& b) {
 
 void et_and_curves(const char* name) {
   const RealComplex r = load(name);
-  if (r.complex.num_vertices() == 0) {
-    WARN(name << " not found in " << test::shared_meshes_dir() << "; skipped");
-    return;
-  }
   const ComplexTopology t = complex_topology(r.complex);
   const auto run = run_erosion_thickness(r.complex, 0.004 * r.length, 1);
   // R is 1-Lipschitz between the complex's vertices (a distance to the samples), but its linear
@@ -119,10 +113,6 @@ void et_and_curves(const char* name) {
 
 void skeletons(const char* name, std::size_t genus, bool plates = true) {
   const RealComplex r = load(name);
-  if (r.complex.num_vertices() == 0) {
-    WARN(name << " not found in " << test::shared_meshes_dir() << "; skipped");
-    return;
-  }
   const ComplexTopology t = complex_topology(r.complex);
   CHECK(t.b1 == genus);
   const auto run = run_erosion_thickness(r.complex, 0.004 * r.length, 1);
@@ -151,9 +141,9 @@ void skeletons(const char* name, std::size_t genus, bool plates = true) {
 
 }  // namespace
 
-TEST_CASE("fertility: ET and medial curves keep the topology") { et_and_curves("fertility.off"); }
-TEST_CASE("fertility: skeletons keep the topology and the minimal one is four cycles") { skeletons("fertility.off", 4); }
-TEST_CASE("hand: ET and medial curves keep the topology") { et_and_curves("hand.obj"); }
-TEST_CASE("hand: skeletons keep the topology and the minimal one is a point") { skeletons("hand.obj", 0); }
+TEST_CASE("elephant: ET and medial curves keep the topology") { et_and_curves("elephant.off"); }
+TEST_CASE("elephant: skeletons keep the topology and the minimal one is three cycles") { skeletons("elephant.off", 3); }
+TEST_CASE("fandisk: ET and medial curves keep the topology") { et_and_curves("fandisk.off"); }
+TEST_CASE("fandisk: skeletons keep the topology and the minimal one is a point") { skeletons("fandisk.off", 0); }
 TEST_CASE("armadillo: ET and medial curves keep the topology") { et_and_curves("armadillo.off"); }
 TEST_CASE("knot: skeletons keep the topology and the minimal one is one cycle") { skeletons("knot.off", 1, false); }

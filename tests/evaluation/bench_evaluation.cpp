@@ -1,5 +1,5 @@
 // Benchmark: the evaluation stages on the interior-Voronoi complex of a mesh (default:
-// ../shared/data/meshes/armadillo.off). Usage: bench_evaluation [MESH] [REPEATS]
+// data/meshes/armadillo.off of the corpus, scripts/fetch-meshes.sh). Usage: bench_evaluation [MESH] [REPEATS]
 //
 // `bench_evaluation --accuracy` instead prints the error of the envelope boundary sampling on
 // envelopes with a known answer (the table in docs/plugins/evaluation.md).
@@ -114,7 +114,7 @@ int accuracy() {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--accuracy") return accuracy();
-  const std::string path = argc > 1 ? argv[1] : std::string(MEDAX_SOURCE_DIR "/../shared/data/meshes/armadillo.off");
+  const std::string path = argc > 1 ? argv[1] : std::string(MEDAX_SOURCE_DIR "/data/meshes/armadillo.off");
   const int repeats = argc > 2 ? std::stoi(argv[2]) : 3;
   Shape shape;
   shape.mesh = read_mesh(path);

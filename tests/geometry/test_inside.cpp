@@ -1,5 +1,5 @@
 // Inside tests: CGAL Side_of_triangle_mesh (InsideTest) against the generalized winding number
-// on every good shared mesh, and against the analytic answer on a sphere.
+// on every good mesh of the Debian corpus, and against the analytic answer on a sphere.
 #include <medax/io.hpp>
 #include <medax/services/inside.hpp>
 #include <medax/testing/shapes.hpp>
@@ -31,13 +31,9 @@ std::vector<Vec3> points_around(const SurfaceMesh& mesh, std::size_t n, std::uin
 
 }  // namespace
 
-TEST_CASE("InsideTest agrees with the winding number on every good shared mesh", "[geometry][inside]") {
-  const auto meshes = test::good_meshes();
-  if (meshes.empty()) {
-    WARN("no shared meshes in " << test::shared_meshes_dir() << ": skipped");
-    return;
-  }
-  CHECK(meshes.size() >= 20);
+TEST_CASE("InsideTest agrees with the winding number on every good mesh of the Debian corpus", "[geometry][inside]") {
+  const auto meshes = test::debian_corpus(false);
+  CHECK(meshes.size() == 12);
   for (const auto& path : meshes) {
     INFO(path.filename().string());
     const SurfaceMesh mesh = read_mesh(path);

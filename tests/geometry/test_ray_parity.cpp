@@ -1,5 +1,5 @@
 // services::RayParityInside, the exact batch inside test of the voronoi and dey_zhao
-// extractions: the same answers as CGAL's Side_of_triangle_mesh on every good shared mesh, and
+// extractions: the same answers as CGAL's Side_of_triangle_mesh on every good Debian-corpus mesh, and
 // the analytic answer on a box queried on a lattice that sends rays through its edges and
 // vertices and puts points on its faces.
 #include <medax/io.hpp>
@@ -22,12 +22,10 @@ namespace {
 
 }  // namespace
 
-TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good shared mesh", "[geometry][inside]") {
-  const auto meshes = test::good_meshes();
-  if (meshes.empty()) {
-    WARN("no shared meshes in " << test::shared_meshes_dir() << ": skipped");
-    return;
-  }
+TEST_CASE("RayParityInside agrees with Side_of_triangle_mesh on every good mesh of the Debian corpus",
+          "[geometry][inside]") {
+  const auto meshes = test::debian_corpus(false);
+  CHECK(meshes.size() == 12);
   for (const auto& path : meshes) {
     INFO(path.filename().string());
     const SurfaceMesh mesh = read_mesh(path);

@@ -218,14 +218,7 @@ TEST_CASE("Voronoi of a box: vertices equidistant from two faces, radius the dis
 
 TEST_CASE("Voronoi is deterministic, and the same in parallel, sequentially and with either inside test",
           "[voronoi]") {
-  const std::filesystem::path path = test::shared_meshes_dir() / "bunny.obj";
-  SurfaceMesh mesh;
-  if (std::filesystem::exists(path)) {
-    mesh = read_mesh(path);
-  } else {
-    WARN("bunny.obj not found in " << test::shared_meshes_dir() << ": using a torus");
-    mesh = testing::make_torus(2.0, 0.7, 48, 24);
-  }
+  const SurfaceMesh mesh = read_mesh(test::corpus_mesh("elephant.off"));  // organic, genus 3
   const MedialComplex first = interior_voronoi(mesh.vertices, mesh);
   REQUIRE(first.num_vertices() > 1000);
   voronoi::InteriorVoronoiOptions sequential;

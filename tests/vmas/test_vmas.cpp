@@ -1,4 +1,4 @@
-// VMAS (plugins/vmas): the properties of ../shared/specs/huang2024_vmas.md §5 on analytic
+// VMAS (plugins/vmas): the properties of docs/notes/huang2024_vmas.md §5 on analytic
 // shapes, the solver's edit API, the edit scripts, both stages (mesh and point cloud) and the
 // package in a pipeline.
 #include "pipeline_run.hpp"

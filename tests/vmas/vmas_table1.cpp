@@ -86,7 +86,7 @@ double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::filesystem::path meshes = MEDAX_SHARED_MESHES_DIR;
+  std::filesystem::path meshes = MEDAX_CORPUS_DIR;  // data/meshes (scripts/fetch-meshes.sh --network)
   int threads = 0, repeat = 1;
   bool evaluate = true;
   std::vector<std::string> only;

@@ -3,7 +3,7 @@
 // convergence guarantee", Algorithmica 38): the medial axis as the Voronoi facets dual to the
 // Delaunay edges that pass the Angle or the Ratio condition at one of their ends, plus their
 // closure. Plain C++ over the medax data model; the `dey_zhao` stage is a thin face of it.
-// Realisation: the global passes A–F of ../shared/specs/dey_zhao2004.md §2.3 (see
+// Realisation: the global passes A–F of docs/notes/dey_zhao2004.md §2.3 (see
 // docs/plugins/dey_zhao.md for every choice and deviation).
 #include <medax/medial_complex.hpp>
 #include <medax/services/delaunay.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // Shrinking-ball medial spheres (Ma, Bae, Choi, Kim 2012), constants as in
-// ../shared/specs/huang2024_vmas.md §2.7.
+// docs/notes/huang2024_vmas.md §2.7.
 #include <medax/services/kdtree.hpp>
 
 namespace medax::services {

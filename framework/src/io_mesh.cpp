@@ -56,7 +56,8 @@ std::string read_all(const fs::path& path) {
 /// Lines of a text split into whitespace-separated tokens, '#' comments removed, with line numbers.
 class Lines {
  public:
-  explicit Lines(std::string_view text) : text_(text) {}
+  /// `hash_comments`: '#' starts a comment (OFF, OBJ); PLY has none, and CGAL reads a '#' as text.
+  explicit Lines(std::string_view text, bool hash_comments = true) : text_(text), hash_comments_(hash_comments) {}
   /// Next line with at least one token; false at the end of the text.
   bool next(std::vector<std::string_view>& tokens) {
     while (pos_ < text_.size()) {
@@ -65,7 +66,7 @@ class Lines {
       std::string_view line = text_.substr(pos_, end - pos_);
       pos_ = end + 1;
       ++line_;
-      line = line.substr(0, line.find('#'));
+      if (hash_comments_) line = line.substr(0, line.find('#'));
       tokens.clear();
       std::size_t i = 0;
       while (i < line.size()) {
@@ -85,6 +86,7 @@ class Lines {
   std::string_view text_;
   std::size_t pos_ = 0;
   std::size_t line_ = 0;
+  bool hash_comments_;
 };
 
 bool parse_integer(std::string_view token, long long& value) {
@@ -307,7 +309,7 @@ PlyProperty ply_property(const fs::path& path, const std::vector<std::string_vie
 PlyHeader read_ply_header(const fs::path& path, const std::string& text) {
   if (text.rfind("ply", 0) != 0) fail(path, "not a PLY file: it must start with 'ply'");
   PlyHeader header;
-  Lines lines(text);
+  Lines lines(text, false);
   std::vector<std::string_view> t;
   for (;;) {
     if (!lines.next(t)) fail(path, "the PLY header has no 'end_header' line");
@@ -368,7 +370,7 @@ long long vertex_count(const PlyHeader& header) {
 /// ASCII body: one line per element with the values its properties declare, coordinates finite,
 /// face indices in range; errors name the line and the element index.
 void check_ply_ascii_body(const fs::path& path, const std::string& text, const PlyHeader& header) {
-  Lines lines(std::string_view(text).substr(header.body));
+  Lines lines(std::string_view(text).substr(header.body), false);
   std::vector<std::string_view> t;
   const long long nv = vertex_count(header);
   const auto where = [&](const PlyHeaderElement& e, long long i) {

@@ -8,6 +8,8 @@
 #include <glob.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -43,36 +45,145 @@ fs::path absolute_from(const fs::path& base, const std::string& text) {
   return (p.is_relative() ? base / p : p).lexically_normal();
 }
 
-/// One entry of `inputs:`: a path, a glob, or {manifest: FILE} (one path per line, '#' comments).
-void add_inputs(const YAML::Node& node, const fs::path& base, std::vector<fs::path>& inputs, detail::Diagnostics& diag) {
-  if (node.IsMap() && node["manifest"] && node["manifest"].IsScalar()) {
-    const fs::path manifest = absolute_from(base, node["manifest"].Scalar());
-    std::ifstream in(manifest);
-    if (!in) return diag.error(node["manifest"], fmt::format("cannot read manifest {}", manifest.string()));
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-      line = line.substr(0, line.find('#'));
-      line.erase(0, line.find_first_not_of(" \t"));
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      if (line.empty()) continue;
-      const fs::path p = absolute_from(manifest.parent_path(), line);
-      if (!fs::exists(p))
-        diag.error(node["manifest"], fmt::format("{}:{}: input {} not found", manifest.string(), number, p.string()));
-      inputs.push_back(p);
-    }
-    return;
+bool is_variable_name(const std::string& s) {
+  if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+/// A manifest line: the input's path, then optional NAME=VALUE words (that input's variables).
+struct ManifestLine {
+  std::string path;
+  std::map<std::string, std::string> variables;
+  std::string twice;  ///< a variable given twice on the line, if any
+};
+
+ManifestLine parse_manifest_line(std::string line) {
+  ManifestLine out;
+  // Words are taken from the end while they look like NAME=VALUE, so a path may hold spaces.
+  for (auto space = line.find_last_of(" \t"); space != std::string::npos; space = line.find_last_of(" \t")) {
+    const std::string word = line.substr(space + 1);
+    const auto eq = word.find('=');
+    if (eq == std::string::npos || !is_variable_name(word.substr(0, eq))) break;
+    if (!out.variables.emplace(word.substr(0, eq), word.substr(eq + 1)).second) out.twice = word.substr(0, eq);
+    const auto end = line.find_last_not_of(" \t", space);
+    line.erase(end == std::string::npos ? 0 : end + 1);
   }
+  out.path = line;
+  return out;
+}
+
+/// `{manifest: FILE}`: one input per line (a path, then optional NAME=VALUE variables), '#' comments.
+void add_manifest(const YAML::Node& at, const fs::path& manifest, SweepConfig& config, detail::Diagnostics& diag) {
+  std::ifstream in(manifest);
+  if (!in) return diag.error(at, fmt::format("cannot read manifest {}", manifest.string()));
+  std::string text;
+  for (int number = 1; std::getline(in, text); ++number) {
+    text = text.substr(0, text.find('#'));
+    text.erase(0, text.find_first_not_of(" \t"));
+    text.erase(text.find_last_not_of(" \t\r") + 1);
+    if (text.empty()) continue;
+    const std::string where = fmt::format("{}:{}", manifest.string(), number);
+    const ManifestLine line = parse_manifest_line(text);
+    if (line.path.empty()) diag.error(at, fmt::format("{}: a manifest line starts with the input's path", where));
+    if (!line.twice.empty())
+      diag.error(at, fmt::format("{}: variable '{}' is given twice on this line; keep one", where, line.twice));
+    const fs::path p = absolute_from(manifest.parent_path(), line.path);
+    if (!fs::exists(p)) diag.error(at, fmt::format("{}: input {} not found", where, p.string()));
+    const auto [it, fresh] = config.variables.emplace(p, InputVariables{line.variables, where});
+    if (!fresh && it->second.values != line.variables)
+      diag.error(at, fmt::format("{}: input {} is listed again with other variables (first at {}); a sweep's "
+                                 "variables belong to the input, so list it once",
+                                 where, p.string(), it->second.origin));
+    config.inputs.push_back(p);
+  }
+}
+
+/// One entry of `inputs:`: a path, a glob, or {manifest: FILE}.
+void add_inputs(const YAML::Node& node, const fs::path& base, SweepConfig& config, detail::Diagnostics& diag) {
+  if (node.IsMap() && node["manifest"] && node["manifest"].IsScalar())
+    return add_manifest(node["manifest"], absolute_from(base, node["manifest"].Scalar()), config, diag);
   if (!node.IsScalar())
     return diag.error(node, "an `inputs:` entry is a path, a glob like meshes/*.off, or {manifest: FILE}");
   const fs::path p = absolute_from(base, node.Scalar());
   if (has_glob_characters(node.Scalar())) {
     const auto matches = glob_paths(p);
     if (matches.empty()) diag.error(node, fmt::format("no file matches {}", p.string()));
-    inputs.insert(inputs.end(), matches.begin(), matches.end());
+    config.inputs.insert(config.inputs.end(), matches.begin(), matches.end());
   } else {
     if (!fs::exists(p)) diag.error(node, fmt::format("input file {} not found", p.string()));
-    inputs.push_back(p);
+    config.inputs.push_back(p);
   }
+}
+
+/// A sweep value with its `${NAME}` references replaced by an input's variables.
+struct Expansion {
+  std::string text;
+  std::vector<std::string> undefined;  ///< names the input does not define
+  bool malformed = false;              ///< a `${` without `}` or with something other than a name
+};
+
+Expansion expand_variables(const std::string& text, const std::map<std::string, std::string>& values) {
+  Expansion out;
+  std::size_t from = 0;
+  for (auto open = text.find("${"); open != std::string::npos; open = text.find("${", from)) {
+    const auto close = text.find('}', open);
+    const std::string name = close == std::string::npos ? "" : text.substr(open + 2, close - open - 2);
+    out.text += text.substr(from, open - from);
+    if (!is_variable_name(name)) {
+      out.malformed = true;
+      from = open;
+      break;
+    }
+    const auto it = values.find(name);
+    if (it == values.end()) out.undefined.push_back(name);
+    out.text += it == values.end() ? text.substr(open, close + 1 - open) : it->second;
+    from = close + 1;
+  }
+  out.text += text.substr(from);
+  return out;
+}
+
+const std::map<std::string, std::string>& variables_of(const SweepConfig& config, const fs::path& input) {
+  static const std::map<std::string, std::string> none;
+  const auto it = config.variables.find(input);
+  return it == config.variables.end() ? none : it->second.values;
+}
+
+/// "plane.off (list.txt:4)" or "plane.off (given as a path, which sets no variables)".
+std::string input_origin(const SweepConfig& config, const fs::path& input) {
+  const auto it = config.variables.find(input);
+  return fmt::format("{} ({})", input.string(),
+                     it == config.variables.end() ? "not from a manifest line, so it has no variables" : it->second.origin);
+}
+
+std::string undefined_message(const std::string& name, const std::vector<std::string>& inputs) {
+  std::string list;
+  for (const std::string& input : inputs) list += (list.empty() ? "" : "; ") + input;
+  return fmt::format("unknown variable '${{{}}}': not defined for input {}; write `{}=VALUE` after the input's "
+                     "path on its manifest line",
+                     name, list, name);
+}
+
+/// Every `${NAME}` in the sweep's values (bundle names too) must be defined for every input.
+void check_variable_uses(const YAML::Node& node, const SweepConfig& config, detail::Diagnostics& diag) {
+  if (node.IsMap()) {
+    for (const auto& kv : node) check_variable_uses(kv.second, config, diag);
+    return;
+  }
+  if (node.IsSequence()) {
+    for (const YAML::Node& n : node) check_variable_uses(n, config, diag);
+    return;
+  }
+  if (!node.IsScalar() || node.Scalar().find("${") == std::string::npos) return;
+  std::map<std::string, std::vector<std::string>> lacking;  // variable -> inputs that do not set it
+  for (const fs::path& input : config.inputs) {
+    const Expansion e = expand_variables(node.Scalar(), variables_of(config, input));
+    if (e.malformed)
+      return diag.error(node, fmt::format("'{}': a variable is written ${{NAME}}, NAME made of letters, digits and _",
+                                          node.Scalar()));
+    for (const std::string& name : e.undefined) lacking[name].push_back(input_origin(config, input));
+  }
+  for (const auto& [name, inputs] : lacking) diag.error(node, undefined_message(name, inputs));
 }
 
 /// `STAGE.PARAM: [v1, v2]` (or a single value).
@@ -167,8 +278,8 @@ SweepConfig load_sweep(const fs::path& pipeline) {
   config.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : pipeline.stem().string();
 
   if (const YAML::Node inputs = root["inputs"]) {
-    if (inputs.IsSequence()) for (const YAML::Node& n : inputs) add_inputs(n, base, config.inputs, diag);
-    else add_inputs(inputs, base, config.inputs, diag);
+    if (inputs.IsSequence()) for (const YAML::Node& n : inputs) add_inputs(n, base, config, diag);
+    else add_inputs(inputs, base, config, diag);
     if (root["input"]) diag.error(root["input"], "give either `input:` or `inputs:`, not both");
   } else if (root["input"] && root["input"].IsScalar()) {
     config.inputs.push_back(absolute_from(base, root["input"].Scalar()));
@@ -193,6 +304,7 @@ SweepConfig load_sweep(const fs::path& pipeline) {
                                              axis->key, key, it->second));
         config.axes.push_back(std::move(*axis));
       }
+      check_variable_uses(sweep, config, diag);
     }
   }
 
@@ -248,6 +360,14 @@ std::vector<SweepJob> expand_sweep(const SweepConfig& config) {
   std::vector<SweepJob> jobs;
   std::vector<std::size_t> choice(config.axes.size(), 0);
   for (const fs::path& input : config.inputs) {
+    const auto& variables = variables_of(config, input);
+    const auto expand = [&](const std::string& text) {
+      Expansion e = expand_variables(text, variables);
+      if (!e.undefined.empty())  // an input replaced after load_sweep checked the file's own
+        throw PipelineError({Diagnostic{config.file.string(), 0, 0,
+                                        undefined_message(e.undefined.front(), {input_origin(config, input)})}});
+      return e.text;
+    };
     std::fill(choice.begin(), choice.end(), 0);
     while (true) {
       SweepJob job;
@@ -255,9 +375,13 @@ std::vector<SweepJob> expand_sweep(const SweepConfig& config) {
       std::string name = fmt::format("{:04}-{}", jobs.size() + 1, input.stem().string());
       for (std::size_t a = 0; a < config.axes.size(); ++a) {
         const SweepAxis& axis = config.axes[a];
-        job.assignment.emplace_back(axis.key, axis.values[choice[a]]);
-        job.settings.insert(job.settings.end(), axis.settings[choice[a]].begin(), axis.settings[choice[a]].end());
-        name += "-" + axis.key.substr(axis.key.find('.') + 1) + "=" + axis.values[choice[a]];
+        const std::string shown = expand(axis.values[choice[a]]);
+        job.assignment.emplace_back(axis.key, shown);
+        for (const std::string& setting : axis.settings[choice[a]]) {
+          const auto eq = setting.find('=');
+          job.settings.push_back(setting.substr(0, eq + 1) + expand(setting.substr(eq + 1)));
+        }
+        name += "-" + axis.key.substr(axis.key.find('.') + 1) + "=" + shown;
       }
       // A plugin swap resets that stage's parameters, so swaps go first.
       std::stable_partition(job.settings.begin(), job.settings.end(),

@@ -409,3 +409,64 @@ TEST_CASE("a plot that cannot be drawn is named, and plots of removed entries go
   CHECK(fs::exists(dir / "out" / "plots" / "time.total_vs_scale.factor.svg"));
   CHECK_FALSE(fs::exists(kept));
 }
+
+TEST_CASE("a manifest line's variables fill ${NAME} in the sweep values of that input's jobs", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_variables");
+  write_text(dir / "list.txt", "# mesh, then its variables\n" + data_file("cube.off") + " factor=2 what=vertices\n" +
+                                   data_file("ellipsoid.off") + "  what=all   factor=0.5  # comment\n");
+  const fs::path file = write_text(
+      dir / "sweep.yaml", "inputs:\n  - {manifest: list.txt}\nsweep:\n  scale.factor: [1, \"${factor}\"]\n"
+                          "  method:\n    - {name: \"n${what}\", count.element: \"${what}\"}\n"
+                          "stages:\n  - {plugin: test_scale, id: scale}\n  - plugin: test_centroid\n"
+                          "  - {plugin: test_count, id: count}\n");
+  const auto config = medax::load_sweep(file);
+  REQUIRE(config.inputs.size() == 2);
+  const auto& cube = config.variables.at(config.inputs[0]);
+  CHECK(cube.values == std::map<std::string, std::string>{{"factor", "2"}, {"what", "vertices"}});
+  CHECK(cube.origin == (dir / "list.txt").string() + ":2");
+  auto jobs = medax::expand_sweep(config);
+  REQUIRE(jobs.size() == 4);
+  CHECK(jobs[0].settings == std::vector<std::string>{"scale.factor=1", "count.element=vertices"});
+  CHECK(jobs[1].settings == std::vector<std::string>{"scale.factor=2", "count.element=vertices"});
+  CHECK(jobs[1].assignment == std::vector<std::pair<std::string, std::string>>{{"scale.factor", "2"}, {"method", "nvertices"}});
+  CHECK(jobs[1].name == "0002-cube-factor=2-method=nvertices");
+  CHECK(jobs[3].settings == std::vector<std::string>{"scale.factor=0.5", "count.element=all"});
+  medax::validate_sweep(config, jobs, medax::test::good_registry());
+  CHECK(jobs[1].config_hash != jobs[3].config_hash);
+}
+
+TEST_CASE("an unknown or malformed sweep variable is reported with the file and line of each side", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_variable_errors");
+  const fs::path list = write_text(dir / "list.txt", data_file("cube.off") + " factor=2\n" + data_file("ellipsoid.off") + "\n");
+  const fs::path file = write_text(dir / "sweep.yaml", "inputs:\n  - {manifest: list.txt}\n  - " + data_file("joint.off") +
+                                                           "\nsweep:\n  scale.factor: [\"${factor}\"]\n"
+                                                           "  count.element: [\"${1x}\"]\n"
+                                                           "stages:\n  - {plugin: test_scale, id: scale}\n"
+                                                           "  - {plugin: test_count, id: count}\n");
+  try {
+    medax::load_sweep(file);
+    FAIL("the sweep loaded without error");
+  } catch (const medax::PipelineError& e) {
+    INFO(e.what());
+    REQUIRE(e.diagnostics().size() == 2);
+    const std::string unknown = e.diagnostics()[0].format();
+    CHECK_THAT(unknown, Catch::Contains("sweep.yaml:5:18") && Catch::Contains("unknown variable '${factor}'") &&
+                            Catch::Contains("ellipsoid.off (" + list.string() + ":2)") &&
+                            Catch::Contains("joint.off (not from a manifest line") && !Catch::Contains("cube.off") &&
+                            Catch::Contains("write `factor=VALUE`"));
+    CHECK_THAT(e.diagnostics()[1].format(), Catch::Contains("sweep.yaml:6:19") && Catch::Contains("written ${NAME}"));
+  }
+  write_text(list, data_file("cube.off") + " factor=2 factor=3\n");
+  CHECK_THROWS_WITH(medax::load_sweep(file), Catch::Contains(list.string() + ":1: variable 'factor' is given twice"));
+
+  // An input replaced after loading (`medax run FILE --input MESH`) keeps its manifest variables
+  // when it is listed there, and is refused naming the variable otherwise.
+  write_text(list, data_file("cube.off") + " factor=2\n");
+  write_text(file, "inputs:\n  - {manifest: list.txt}\nsweep:\n  scale.factor: [\"${factor}\"]\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n");
+  auto config = medax::load_sweep(file);
+  CHECK(medax::expand_sweep(config).at(0).settings == std::vector<std::string>{"scale.factor=2"});
+  config.inputs = {fs::path(data_file("sphere.obj"))};
+  CHECK_THROWS_WITH(medax::expand_sweep(config), Catch::Contains("unknown variable '${factor}'") &&
+                                                     Catch::Contains("sphere.obj (not from a manifest line"));
+}

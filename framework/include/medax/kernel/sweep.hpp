@@ -34,10 +34,19 @@ struct SweepLimits {
   double interrupt_grace_seconds = 10;
 };
 
+/// Variables of one input, from its manifest line (`armadillo.off spheres=83 note=x`): a sweep
+/// value `${spheres}` becomes that input's value in its jobs (e.g. a method's sphere count per model).
+struct InputVariables {
+  std::map<std::string, std::string> values;
+  std::string origin;  ///< "MANIFEST:LINE" where they were given
+};
+
 struct SweepConfig {
   std::filesystem::path file;
   std::string name;
   std::vector<std::filesystem::path> inputs;  ///< absolute, in order
+  /// Per-input variables by absolute input path (only inputs from manifest lines that set some).
+  std::map<std::filesystem::path, InputVariables> variables;
   std::vector<SweepAxis> axes;
   std::vector<PlotSpec> plots;
   /// Columns of results.md (`table:`); empty: every column. results.csv always has them all.
@@ -59,7 +68,9 @@ struct SweepJob {
 bool is_sweep(const std::filesystem::path& pipeline);
 /// Reads the sweep parts of a pipeline file. Throws PipelineError with positions.
 SweepConfig load_sweep(const std::filesystem::path& pipeline);
-/// The cartesian product, inputs outermost, then the axes in file order.
+/// The cartesian product, inputs outermost, then the axes in file order; `${NAME}` in a setting's
+/// value is replaced by the job input's variable NAME. Throws PipelineError when an input lacks a
+/// variable a value uses (load_sweep checks the file's own inputs; this catches a replaced input).
 std::vector<SweepJob> expand_sweep(const SweepConfig& config);
 /// Validates every job as a single pipeline before any work and sets each job's config_hash.
 /// Throws PipelineError.

@@ -166,12 +166,14 @@ double Envelope::signed_distance_brute_force(const Vec3& x) const {
   return best;
 }
 
-EnvelopeSamples Envelope::sample_boundary(double step, const std::function<void(double)>& progress) const {
-  return envelope_detail::sample_boundary(impl_->bvh, step, progress);
+EnvelopeSamples Envelope::sample_boundary(double step, const std::function<void(double)>& progress,
+                                          const CancelCheck& cancel) const {
+  return envelope_detail::sample_boundary(impl_->bvh, step, progress, envelope_detail::CancelPoll(cancel));
 }
 
 std::vector<double> Envelope::boundary_distances(const std::vector<Vec3>& points, const EnvelopeSamples& samples,
-                                                 std::vector<double>* signed_distances_out) const {
+                                                 std::vector<double>* signed_distances_out,
+                                                 const CancelCheck& cancel) const {
   std::vector<double> out(points.size());
   if (signed_distances_out) signed_distances_out->assign(points.size(), kInf);
   if (empty()) {
@@ -187,7 +189,9 @@ std::vector<double> Envelope::boundary_distances(const std::vector<Vec3>& points
   std::unique_ptr<PointIndex> index;
   if (!samples.points.empty()) index = std::make_unique<PointIndex>(samples.points);
   const bool hints = index && samples.primitives.size() == samples.points.size();
+  const envelope_detail::CancelPoll poll(cancel);
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+    poll.at(i);
     const Vec3& x = points[i];
     // The primitive under the nearest boundary sample seeds the search.
     Hit start{kInf, -1};

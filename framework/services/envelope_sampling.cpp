@@ -6,7 +6,6 @@
 
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -105,13 +104,14 @@ struct Grid {
 ///    its centre (a grid point) is within half a diagonal of ∂E, as φ is 1-Lipschitz. The values
 ///    found that settle a grid point's sign go into `known`, for step 2.
 std::vector<Cell> narrow_band(const EnvelopeBvh& bvh, const Grid& grid, KnownValues& known,
-                              const std::function<void(double)>& report) {
+                              const std::function<void(double)>& report, const CancelPoll& poll) {
   std::vector<Cell> cells{{0, 0, 0, -1}};
   for (int level = grid.levels; level >= kLastLevel; --level) {
     const std::uint32_t size = std::uint32_t{1} << level, half = size / 2;
     const double half_diagonal = 0.5 * std::sqrt(3.0) * size * grid.step + grid.slack;
     std::vector<Hit> hits(cells.size());
     tbb::parallel_for(std::size_t{0}, cells.size(), [&](std::size_t c) {
+      poll.at(c);
       const Cell& cell = cells[c];
       // Only the class matters: φ > h (nothing found below h), φ < −h, or between. The parent's
       // primitive often settles it at once.
@@ -122,6 +122,7 @@ std::vector<Cell> narrow_band(const EnvelopeBvh& bvh, const Grid& grid, KnownVal
     });
     std::vector<Cell> next;
     for (std::size_t c = 0; c < cells.size(); ++c) {
+      poll.at(c);
       // Reusable as a corner value: inside (sign), or outside by more than a step (nothing to
       // locate from it). A kept cell's positive value is only an upper bound.
       if (hits[c].d < 0 || hits[c].prim < 0)
@@ -138,29 +139,42 @@ std::vector<Cell> narrow_band(const EnvelopeBvh& bvh, const Grid& grid, KnownVal
   return cells;
 }
 
-/// The cells of one grid step inside the narrow band's cells (which are 2^kLastLevel steps).
-std::vector<Cell> unit_cells(std::vector<Cell> cells) {
-  for (int level = kLastLevel - 1; level >= 1; --level) {
-    const std::uint32_t half = std::uint32_t{1} << (level - 1);
-    std::vector<Cell> next;
-    next.reserve(8 * cells.size());
-    for (const Cell& c : cells)
-      for (std::uint32_t a = 0; a < 8; ++a)
-        next.push_back({c.i + ((a & 1) ? half : 0), c.j + ((a & 2) ? half : 0), c.k + ((a & 4) ? half : 0), c.hint});
-    cells = std::move(next);
-  }
-  return cells;
+/// `keys` sorted, each once: a counting sort on i (the high bits), then each slice of one i
+/// sorted on its own, in parallel; a stop is seen between slices.
+std::vector<std::uint64_t> sorted_unique(const std::vector<std::uint64_t>& keys, const CancelPoll& poll) {
+  const auto slice = [](std::uint64_t key) { return static_cast<std::size_t>(key >> (2 * kKeyBits)); };
+  std::size_t slices = 0;
+  for (std::uint64_t key : keys) slices = std::max(slices, slice(key) + 1);
+  std::vector<std::size_t> start(slices + 1, 0);
+  for (std::uint64_t key : keys) ++start[slice(key) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint64_t> sorted(keys.size());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (std::uint64_t key : keys) sorted[next[slice(key)]++] = key;
+  poll.now();
+  tbb::parallel_for(std::size_t{0}, slices, [&](std::size_t s) {
+    poll.now();
+    std::sort(sorted.begin() + start[s], sorted.begin() + start[s + 1]);
+  });
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  return sorted;
 }
 
-/// The grid points at the corners of `cells`, sorted, each once.
-std::vector<std::uint64_t> corner_keys(const std::vector<Cell>& cells) {
+/// The grid points of the narrow band's cells (the children of the last level's cells,
+/// 2^(kLastLevel−1) steps a side, corners included), sorted, each once: the corners of the unit
+/// cells inside them. Generated per band cell rather than per unit cell, which gives 27 keys
+/// instead of 64 per band cell to sort.
+std::vector<std::uint64_t> corner_keys(const std::vector<Cell>& cells, const CancelPoll& poll) {
+  constexpr std::uint32_t side = (std::uint32_t{1} << (kLastLevel - 1)) + 1;  // grid points per side
   std::vector<std::uint64_t> corners;
-  corners.reserve(8 * cells.size());
-  for (const Cell& c : cells)
-    for (std::uint32_t a = 0; a < 8; ++a) corners.push_back(pack(c.i + (a & 1), c.j + ((a >> 1) & 1), c.k + ((a >> 2) & 1)));
-  tbb::parallel_sort(corners.begin(), corners.end());
-  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-  return corners;
+  corners.reserve(side * side * side * cells.size());
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    poll.at(c);
+    for (std::uint32_t a = 0; a < side; ++a)
+      for (std::uint32_t b = 0; b < side; ++b)
+        for (std::uint32_t d = 0; d < side; ++d) corners.push_back(pack(cells[c].i + a, cells[c].j + b, cells[c].k + d));
+  }
+  return sorted_unique(corners, poll);
 }
 
 /// The value at grid point z (key) of pass p < kLastLevel, from its neighbours on L_{p+1}, whose
@@ -208,7 +222,7 @@ Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corne
 ///    A point of a later pass also tries the primitives found at its neighbours on L_{p+1}: one
 ///    that contains it settles its sign, and the smallest value seeds the search.
 std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
-                               const KnownValues& known) {
+                               const KnownValues& known, const CancelPoll& poll) {
   std::vector<Hit> values(corners.size());
   const double step = grid.step;
   const double reach = step * (1 + 1e-9) + grid.slack;
@@ -217,6 +231,7 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
     const double pass_reach =
         pass == 0 ? reach : (step + 0.5 * stride * std::sqrt(3.0) * step) * (1 + 1e-9) + grid.slack;
     tbb::parallel_for(std::size_t{0}, corners.size(), [&](std::size_t c) {
+      poll.at(c);
       if (lattice_of(corners[c]) != pass) return;
       const auto it = std::lower_bound(known.begin(), known.end(), corners[c],
                                        [](const auto& entry, std::uint64_t key) { return entry.first < key; });
@@ -241,9 +256,11 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
 }
 
 /// 3. Every grid edge whose ends differ in sign crosses ∂E.
-std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values) {
+std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values,
+                                    const CancelPoll& poll) {
   std::vector<Crossing> crossings;
   for (std::size_t c = 0; c < corners.size(); ++c) {
+    poll.at(c);
     const auto [i, j, k] = unpack(corners[c]);
     for (int axis = 0; axis < 3; ++axis) {
       const std::uint64_t next = pack(i + (axis == 0), j + (axis == 1), k + (axis == 2));
@@ -264,12 +281,14 @@ std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, 
 /// 4. A plane with unit normal n cuts ‖n‖₁ grid edges per step² of area (n in the grid's
 ///    frame), so the point stands for step² / ‖n‖₁ of area.
 void crossing_points(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
-                     const std::vector<Hit>& values, const std::vector<Crossing>& crossings, EnvelopeSamples& out) {
+                     const std::vector<Hit>& values, const std::vector<Crossing>& crossings, EnvelopeSamples& out,
+                     const CancelPoll& poll) {
   out.points.resize(crossings.size());
   out.normals.resize(crossings.size());
   out.primitives.resize(crossings.size());
   out.areas.resize(crossings.size());
   tbb::parallel_for(std::size_t{0}, crossings.size(), [&](std::size_t e) {
+    poll.at(e);
     const std::size_t a = crossings[e][0], b = crossings[e][1];
     const Vec3 pa = grid.point(corners[a]), pb = grid.point(corners[b]);
     Hit hit = values[a];
@@ -287,7 +306,8 @@ void crossing_points(const EnvelopeBvh& bvh, const Grid& grid, const std::vector
 
 }  // namespace
 
-EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::function<void(double)>& progress) {
+EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::function<void(double)>& progress,
+                                const CancelPoll& poll) {
   if (!(step > 0) || !std::isfinite(step)) throw std::invalid_argument("envelope sampling: the step must be > 0");
   EnvelopeSamples out;
   out.step = step;
@@ -297,10 +317,10 @@ EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::
   };
   const Grid grid(bvh, step);
   KnownValues known;
-  const std::vector<std::uint64_t> corners = corner_keys(unit_cells(narrow_band(bvh, grid, known, report)));
-  const std::vector<Hit> values = corner_values(bvh, grid, corners, known);
+  const std::vector<std::uint64_t> corners = corner_keys(narrow_band(bvh, grid, known, report, poll), poll);
+  const std::vector<Hit> values = corner_values(bvh, grid, corners, known, poll);
   report(0.9);
-  crossing_points(bvh, grid, corners, values, crossing_edges(corners, values), out);
+  crossing_points(bvh, grid, corners, values, crossing_edges(corners, values, poll), out, poll);
   report(1.0);
   return out;
 }

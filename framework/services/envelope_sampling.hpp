@@ -9,8 +9,27 @@
 
 namespace medax::services::envelope_detail {
 
+/// Calls a CancelCheck at every kPollEvery-th item of a (parallel) loop: each item of these loops
+/// is a BVH query (microseconds), so a stop is seen within about a millisecond per thread, and
+/// the check (an atomic read) costs nothing measurable.
+class CancelPoll {
+ public:
+  static constexpr std::size_t kPollEvery = 256;
+  explicit CancelPoll(const CancelCheck& check) : check_(check) {}
+  void at(std::size_t item) const {
+    if (item % kPollEvery == 0) now();
+  }
+  void now() const {
+    if (check_) check_();
+  }
+
+ private:
+  const CancelCheck& check_;
+};
+
 /// The boundary points of the envelope whose primitives `bvh` holds, at grid spacing `step`.
 /// Throws std::invalid_argument when the step is not positive or too small for the envelope.
-EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::function<void(double)>& progress);
+EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::function<void(double)>& progress,
+                                const CancelPoll& poll);
 
 }  // namespace medax::services::envelope_detail

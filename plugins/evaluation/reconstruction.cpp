@@ -110,9 +110,9 @@ double budgeted_step(const Shape& shape, const ReconstructionOptions& options, d
 
 /// Surface -> envelope: distances from the surface samples to ∂E.
 void measure_surface_to_envelope(const services::Envelope& envelope, const std::vector<Vec3>& surface,
-                                 ReconstructionResult& result) {
+                                 ReconstructionResult& result, const services::CancelCheck& cancel) {
   std::vector<double> phi;
-  const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi);
+  const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi, cancel);
   std::size_t inside = 0;
   double sum = 0, mx = 0;
   for (std::size_t i = 0; i < surface.size(); ++i) {
@@ -126,17 +126,27 @@ void measure_surface_to_envelope(const services::Envelope& envelope, const std::
 }
 
 /// Envelope -> surface: distances from the points of ∂E to the mesh (or the nearest sample),
-/// the mean weighted by area.
-void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& result) {
+/// the mean weighted by area. The points go in blocks, with `cancel` polled between them.
+void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& result,
+                                 const services::CancelCheck& cancel) {
   if (result.envelope.size() == 0) return;
-  if (!shape.mesh.empty()) {
-    const services::SurfaceDistance distance(shape.mesh);
-    result.envelope_distances = distance.distances(result.envelope.points);
-  } else {
-    const services::PointIndex index(shape.samples.points);
-    result.envelope_distances.resize(result.envelope.size());
-    for (std::size_t i = 0; i < result.envelope.size(); ++i)
-      result.envelope_distances[i] = index.nearest(result.envelope.points[i]).second;
+  const std::vector<Vec3>& points = result.envelope.points;
+  constexpr std::size_t kBlock = 8192;  // about 10 ms of queries
+  std::optional<services::SurfaceDistance> mesh_distance;
+  std::optional<services::PointIndex> sample_index;
+  if (!shape.mesh.empty()) mesh_distance.emplace(shape.mesh);
+  else sample_index.emplace(shape.samples.points);
+  result.envelope_distances.resize(points.size());
+  for (std::size_t begin = 0; begin < points.size(); begin += kBlock) {
+    if (cancel) cancel();
+    const std::vector<Vec3> block(points.begin() + begin, points.begin() + std::min(points.size(), begin + kBlock));
+    std::vector<double> d;
+    if (mesh_distance) {
+      d = mesh_distance->distances(block);
+    } else {
+      for (const Vec3& p : block) d.push_back(sample_index->nearest(p).second);
+    }
+    std::copy(d.begin(), d.end(), result.envelope_distances.begin() + begin);
   }
   double weighted = 0, area = 0, mx = 0;
   for (std::size_t i = 0; i < result.envelope.size(); ++i) {
@@ -152,7 +162,7 @@ void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& resul
 
 ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
                                             const ReconstructionOptions& options, std::mt19937_64& rng,
-                                            const Progress& progress) {
+                                            const Progress& progress, const services::CancelCheck& cancel) {
   const auto report = [&](double f, std::string_view what) {
     if (progress) progress(f, what);
   };
@@ -175,13 +185,14 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
   result.primitives = envelope.primitives().size();
   result.requested_step = envelope_step(shape, envelope, options);
   result.step = budgeted_step(shape, options, result.requested_step);
-  result.envelope = envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); });
+  result.envelope =
+      envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); }, cancel);
   result.envelope_area = result.envelope.total_area();
 
   report(0.65, "surface to envelope");
-  measure_surface_to_envelope(envelope, surface, result);
+  measure_surface_to_envelope(envelope, surface, result, cancel);
   report(0.75, "envelope to surface");
-  measure_envelope_to_surface(shape, result);
+  measure_envelope_to_surface(shape, result, cancel);
   report(1.0, "done");
   return result;
 }

@@ -45,10 +45,11 @@ struct ReconstructionResult {
 using Progress = std::function<void(double, std::string_view)>;
 
 /// Measures `medial` against the shape's mesh (or, without a mesh, its samples as a point
-/// cloud). Throws std::invalid_argument when there is nothing to measure.
+/// cloud). Throws std::invalid_argument when there is nothing to measure. `cancel` (optional) is
+/// polled from the worker threads every few hundred points; what it throws stops the measure.
 ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComplex& medial,
                                             const ReconstructionOptions& options, std::mt19937_64& rng,
-                                            const Progress& progress = {});
+                                            const Progress& progress = {}, const services::CancelCheck& cancel = {});
 
 /// Writes the envelope's boundary points as an ASCII PLY vertex element: x y z, nx ny nz, area and
 /// distance to the surface, mapped by `frame` (the shape's map to the input's frame). Reals are

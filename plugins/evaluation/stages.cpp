@@ -61,10 +61,13 @@ void ReconstructionStage::check_scene(const Scene& scene) const {
 
 Metrics ReconstructionStage::evaluate(const Shape& shape, const MedialComplex& medial, Context& ctx) {
   const ReconstructionResult r =
-      measure_reconstruction(shape, medial, options_, ctx.rng(), [&ctx](double f, std::string_view what) {
-        ctx.check_cancelled();
-        ctx.progress(f, what);
-      });
+      measure_reconstruction(
+          shape, medial, options_, ctx.rng(),
+          [&ctx](double f, std::string_view what) {
+            ctx.check_cancelled();
+            ctx.progress(f, what);
+          },
+          [&ctx] { ctx.check_cancelled(); });
   if (r.step > r.requested_step)
     ctx.warn(fmt::format("the step {:g} would give more than {} envelope points on this surface; using step {:g} "
                          "instead (raise `max_envelope_samples` or set `step` to insist)",

@@ -18,12 +18,15 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <sstream>
+#include <thread>
 
 using namespace medax;
 
@@ -378,4 +381,71 @@ TEST_CASE("evaluation: the evaluation package loads and runs in a pipeline", "[p
   CHECK(metrics["counts"]["N_c"].get<double>() == 4);
   CHECK(metrics["topology"]["b0"].get<double>() == 1);
   CHECK(metrics["topology"]["input_genus"].get<double>() == 0);
+}
+
+namespace {
+
+/// A context that says "cancelled" from its `cancel_at`-th poll on (polls are counted from
+/// every thread), and counts the polls made after that: each is a stop that was not acted on.
+class CancelAtPoll : public BasicContext {
+ public:
+  explicit CancelAtPoll(long cancel_at) : cancel_at_(cancel_at) {}
+  bool cancelled() const override { return polls_.fetch_add(1) + 1 >= cancel_at_; }
+  /// Polls answered "cancelled" beyond the first.
+  long ignored_stops() const { return std::max(0L, polls_.load() - cancel_at_); }
+
+ private:
+  long cancel_at_;
+  mutable std::atomic<long> polls_{0};
+};
+
+/// A context cancelled by another thread.
+class FlagContext : public BasicContext {
+ public:
+  bool cancelled() const override { return flag.load(); }
+  std::atomic<bool> flag{false};
+};
+
+}  // namespace
+
+TEST_CASE("reconstruction: a cancel stops the envelope loops within a few hundred work items",
+          "[reconstruction][cancel]") {
+  // A fine grid on a sphere: about 750k envelope points, thousands of polls (one per 256 items).
+  Shape sphere;
+  sphere.mesh = testing::make_sphere(1.0, 4);
+  const MedialComplex mc = one_sphere(1.0);
+  evaluation::ReconstructionStage stage;
+  ParamSet params;
+  params.set("resolution", ParamValue(400LL));
+  stage.configure(params);
+  for (long cancel_at : {1L, 10L, 100L, 1000L, 3000L}) {
+    CancelAtPoll ctx(cancel_at);
+    INFO("cancelled at poll " << cancel_at);
+    CHECK_THROWS_AS(stage.evaluate(sphere, mc, ctx), Cancelled);
+    // Every thread sees the stop at its next poll: at most one more poll per thread and loop
+    // (≤ 256 work items each), never the thousands left of the run.
+    CHECK(ctx.ignored_stops() <= 64);
+  }
+}
+
+TEST_CASE("reconstruction: a cancel from another thread ends the stage promptly", "[reconstruction][cancel]") {
+  Shape sphere;
+  sphere.mesh = testing::make_sphere(1.0, 4);
+  const MedialComplex mc = one_sphere(1.0);
+  evaluation::ReconstructionStage stage;
+  ParamSet params;
+  params.set("resolution", ParamValue(1000LL));  // tens of seconds uncancelled
+  stage.configure(params);
+  FlagContext ctx;
+  std::chrono::steady_clock::time_point cancelled_at;
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    cancelled_at = std::chrono::steady_clock::now();
+    ctx.flag = true;
+  });
+  CHECK_THROWS_AS(stage.evaluate(sphere, mc, ctx), Cancelled);
+  const auto stopped_at = std::chrono::steady_clock::now();
+  canceller.join();
+  // A generous bound (a loaded machine): before, a stop could take seconds at this size.
+  CHECK(std::chrono::duration<double>(stopped_at - cancelled_at).count() < 2.0);
 }

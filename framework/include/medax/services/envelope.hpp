@@ -56,6 +56,11 @@ struct EnvelopeSamples {
   double total_area() const;
 };
 
+/// Polled by the long envelope computations (from any thread, every few hundred work items) so a
+/// caller can stop them: whatever it throws (e.g. Context::check_cancelled's Cancelled) ends the
+/// call and propagates. Empty: never polled.
+using CancelCheck = std::function<void()>;
+
 /// Signed distances to single primitives (exact closed forms; see the file comment).
 double sphere_signed_distance(const Vec3& x, const Vec3& c, double r);
 double cone_signed_distance(const Vec3& x, const Vec3& c0, double r0, const Vec3& c1, double r1);
@@ -93,8 +98,9 @@ class Envelope {
   /// area is step² / ‖n‖₁ (n its unit normal in the grid's frame): a plane with normal n cuts
   /// ‖n‖₁ grid edges per step² of area, so the areas sum to the boundary area and weight means
   /// by area. Parts of E thinner than `step` may fall between grid points and be missed.
-  /// `progress` (optional) receives fractions in [0, 1].
-  EnvelopeSamples sample_boundary(double step, const std::function<void(double)>& progress = {}) const;
+  /// `progress` (optional) receives fractions in [0, 1], on the calling thread.
+  EnvelopeSamples sample_boundary(double step, const std::function<void(double)>& progress = {},
+                                  const CancelCheck& cancel = {}) const;
 
   /// Unsigned distance from each point to the boundary ∂E. Outside E: φ(x), exact. Inside E:
   /// −φ(x) (the depth into the deepest primitive) when the closest point of that primitive's
@@ -103,7 +109,8 @@ class Envelope {
   /// most the samples' covering radius (≈ step), never below the lower bound −φ(x).
   /// `signed_distances` (optional) receives φ at the points, which the call computes anyway.
   std::vector<double> boundary_distances(const std::vector<Vec3>& points, const EnvelopeSamples& samples,
-                                         std::vector<double>* signed_distances = nullptr) const;
+                                         std::vector<double>* signed_distances = nullptr,
+                                         const CancelCheck& cancel = {}) const;
 
  private:
   struct Impl;

@@ -323,9 +323,15 @@ std::vector<std::string> formats(detail::Diagnostics& check, const YAML::Node& n
 }  // namespace
 
 namespace {
+/// fs::exists without its exception: a path the system refuses (a name too long) is not found.
+bool file_exists(const fs::path& path) {
+  std::error_code ignored;
+  return fs::exists(path, ignored);
+}
+
 PipelineConfig load_checked(const fs::path& file, const Registry& registry, const Overrides& overrides) {
   detail::Diagnostics check(file.string());
-  if (!fs::exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
+  if (!file_exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
   YAML::Node root;
   try {
     root = YAML::LoadFile(file.string());
@@ -370,11 +376,11 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
 
   if (!overrides.input.empty()) {
     config.input = fs::absolute(overrides.input).lexically_normal();
-    if (!fs::exists(config.input)) check.error_at("--input", fmt::format("input file {} not found", config.input.string()));
+    if (!file_exists(config.input)) check.error_at("--input", fmt::format("input file {} not found", config.input.string()));
   } else if (root["input"]) {
     if (auto text = scalar(check, root["input"], "`input`")) {
       config.input = resolve_path(base, *text);
-      if (!fs::exists(config.input))
+      if (!file_exists(config.input))
         check.error(root["input"], fmt::format("input file {} not found (paths are relative to the pipeline file)",
                                                config.input.string()));
     }
@@ -384,7 +390,7 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
   if (root["medial_input"]) {
     if (auto text = scalar(check, root["medial_input"], "`medial_input`")) {
       config.medial_input = resolve_path(base, *text);
-      if (!fs::exists(config.medial_input))
+      if (!file_exists(config.medial_input))
         check.error(root["medial_input"], fmt::format("medial input {} not found", config.medial_input.string()));
     }
   }

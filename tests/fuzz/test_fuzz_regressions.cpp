@@ -75,6 +75,8 @@ TEST_CASE("the fixed findings are refused with the reason and the place", "[fuzz
   // CGAL sized a face from a binary corner count (5.8 GB for a 142-byte file).
   CHECK_THROWS_WITH(read_mesh(regressions / "off" / "oom_binary_off_corner_count.off"),
                     Catch::Contains("line 1: binary OFF is not supported"));
+  // fs::exists threw std::filesystem_error (a file name too long) for `input:`: a terminate.
+  CHECK_FALSE(feed("pipeline", bytes_of(regressions / "pipeline" / "terminate_input_name_too_long.yaml")));
   // CGAL cast the colour 5520 to unsigned char (undefined); medax reads OFF itself, colours ignored.
   CHECK(read_mesh(regressions / "off" / "ub_coff_colour_out_of_range.off").vertices.size() == 4);
   // CGAL took the back() of an empty element list for a property before any element (the

@@ -131,10 +131,11 @@ void draw(const PlotSpec& plot, const std::vector<Row>& rows, const std::vector<
   }
   fs::create_directories(plot_dir);
   const std::string stem = fmt::format("{}_vs_{}", plot.y, plot.x);
-  std::string data_files;
   std::string plot_command = "plot ";
   std::size_t k = 0;
-  for (auto& [name, points] : series) {
+  for (auto& curve : series) {  // not a structured binding: C++17 lambdas cannot capture one
+    const std::string& name = curve.first;
+    std::vector<std::pair<double, double>>& points = curve.second;
     std::sort(points.begin(), points.end());
     const fs::path data = plot_dir / fmt::format("{}.{}.dat", stem, k);
     write_file_atomic(data, [&](std::ostream& out) {

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -308,20 +309,83 @@ std::vector<long long> check_edges(const SurfaceMesh& mesh, const FaceKinds& kin
   return component_edges;
 }
 
-/// Signed volume about the bounding-box centre of the referenced vertices (smaller round-off
-/// than about the origin).
-double signed_volume(const SurfaceMesh& mesh, const FaceKinds& kinds, const std::vector<char>& referenced) {
+/// Coordinates relative to the bounding box of the referenced vertices: (v − centre) / longest
+/// side. Volumes and solid angles computed in it do not depend on the coordinates' scale (no
+/// underflow or overflow of cubed lengths at 1e-120 or 1e120).
+struct UnitFrame {
+  Vec3 centre = Vec3::Zero();
+  double size = 1;
+  Vec3 operator()(const Vec3& v) const { return (v - centre) / size; }
+};
+
+UnitFrame unit_frame(const SurfaceMesh& mesh, const std::vector<char>& referenced) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     if (referenced[v]) lo = lo.cwiseMin(mesh.vertices[v]), hi = hi.cwiseMax(mesh.vertices[v]);
-  const Vec3 centre = 0.5 * (lo + hi);
-  double six_volume = 0;
+  UnitFrame frame;
+  if (!(lo.array() <= hi.array()).all()) return frame;
+  frame.centre = 0.5 * (lo + hi);
+  const double size = (hi - lo).maxCoeff();
+  if (size > 0 && std::isfinite(size)) frame.size = size;
+  return frame;
+}
+
+/// Signed volume of each component in the unit frame.
+std::vector<double> component_volumes(const SurfaceMesh& mesh, const FaceKinds& kinds,
+                                      const FaceComponents& components, const UnitFrame& frame) {
+  std::vector<double> six_volume(components.count, 0.0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     if (kinds.repeated[f]) continue;
     const auto& [a, b, c] = mesh.faces[f];
-    six_volume += (mesh.vertices[a] - centre).dot((mesh.vertices[b] - centre).cross(mesh.vertices[c] - centre));
+    six_volume[components.of_face[f]] +=
+        frame(mesh.vertices[a]).dot(frame(mesh.vertices[b]).cross(frame(mesh.vertices[c])));
   }
-  return six_volume / 6.0;
+  for (double& v : six_volume) v /= 6.0;
+  return six_volume;
+}
+
+/// Solid angle of the triangle (a, b, c) seen from the origin (Van Oosterom and Strackee), signed
+/// by the triangle's orientation.
+double solid_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = a.norm(), lb = b.norm(), lc = c.norm();
+  return 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+}
+
+/// Components (closed, manifold, consistent) whose orientation does not fit their nesting: the
+/// number of other shells containing a vertex of the shell (|winding number| > 1/2) is its depth;
+/// even depths must have a positive volume, odd ones (cavities) a negative one.
+std::size_t count_misoriented_shells(const SurfaceMesh& mesh, const FaceKinds& kinds,
+                                     const FaceComponents& components, const UnitFrame& frame,
+                                     const std::vector<double>& volumes) {
+  const std::size_t n = components.count;
+  std::vector<std::vector<Index>> faces_of(n);
+  std::vector<Vec3> lo(n, Vec3::Constant(std::numeric_limits<double>::infinity())), hi(n, -lo[0]);
+  std::vector<Vec3> probe(n);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (kinds.repeated[f]) continue;
+    const Index c = components.of_face[f];
+    if (faces_of[c].empty()) probe[c] = frame(mesh.vertices[mesh.faces[f][0]]);
+    faces_of[c].push_back(static_cast<Index>(f));
+    for (Index v : mesh.faces[f]) lo[c] = lo[c].cwiseMin(frame(mesh.vertices[v])), hi[c] = hi[c].cwiseMax(frame(mesh.vertices[v]));
+  }
+  const auto winding = [&](std::size_t d, const Vec3& p) {
+    double total = 0;
+    for (Index f : faces_of[d]) {
+      const Tri& t = mesh.faces[f];
+      total += solid_angle(frame(mesh.vertices[t[0]]) - p, frame(mesh.vertices[t[1]]) - p, frame(mesh.vertices[t[2]]) - p);
+    }
+    return total / (4.0 * 3.14159265358979323846);
+  };
+  std::size_t misoriented = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    std::size_t depth = 0;
+    for (std::size_t d = 0; d < n; ++d) {
+      const bool in_box = (probe[c].array() >= lo[d].array()).all() && (probe[c].array() <= hi[d].array()).all();
+      if (d != c && in_box && std::abs(winding(d, probe[c])) > 0.5) ++depth;
+    }
+    if ((depth % 2 == 0) != (volumes[c] > 0)) ++misoriented;
+  }
+  return misoriented;
 }
 
 /// Genus per component of a closed manifold mesh, from its Euler characteristic.
@@ -364,8 +428,15 @@ MeshReport check_mesh(const SurfaceMesh& mesh, const MeshCheckOptions& options) 
   r.closed = kinds.proper > 0 && r.boundary_edges == 0;
   r.manifold = r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0;
   r.consistently_oriented = r.inconsistent_edges == 0;
-  if (kinds.proper > 0) r.signed_volume = signed_volume(mesh, kinds, components.referenced);
-  r.outward = r.closed && r.manifold && r.consistently_oriented && r.signed_volume > 0;
+  if (kinds.proper > 0) {
+    const UnitFrame frame = unit_frame(mesh, components.referenced);
+    const std::vector<double> volumes = component_volumes(mesh, kinds, components, frame);
+    r.relative_volume = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+    r.signed_volume = r.relative_volume * frame.size * frame.size * frame.size;
+    if (r.closed && r.manifold && r.consistently_oriented)
+      r.misoriented_shells = count_misoriented_shells(mesh, kinds, components, frame, volumes);
+  }
+  r.outward = r.closed && r.manifold && r.consistently_oriented && r.relative_volume > 0;
 
   const auto referenced = static_cast<long long>(
       std::count(components.referenced.begin(), components.referenced.end(), 1));
@@ -419,10 +490,18 @@ std::vector<MeshProblem> MeshReport::problems() const {
     add(MeshProblemKind::InconsistentOrientation, true,
         plural(inconsistent_edges, "edge", "edges") +
             " where the two faces disagree in orientation: `repair` orients the faces consistently (automatic)");
-  if (closed && manifold && consistently_oriented && !(signed_volume > 0))
+  if (closed && manifold && consistently_oriented && !(relative_volume > 0))
     add(MeshProblemKind::InwardOrientation, true,
-        fmt::format("faces oriented inward (signed volume {:g} <= 0): `repair` flips them outward (automatic)",
-                    signed_volume));
+        fmt::format("faces oriented inward (signed volume {:.3g} <= 0, in units of the longest bounding-box side "
+                    "cubed): `repair` flips them outward (automatic), or reorient the faces in the file",
+                    relative_volume));
+  else if (misoriented_shells > 0)
+    add(MeshProblemKind::MisorientedShells, true,
+        fmt::format("{} of {} face the wrong way for their nesting (a shell inside a solid faces outward: two "
+                    "overlapping solids, or a cavity facing out): `repair` orients the shells to bound a volume, "
+                    "making every nested shell a cavity (automatic); if a nested shell is a separate part, remove "
+                    "it or move it out",
+                    misoriented_shells, plural(components, "closed shell", "closed shells")));
   if (duplicate_vertices > 0)
     add(MeshProblemKind::DuplicateVertices, true,
         plural(duplicate_vertices, "duplicate vertex", "duplicate vertices") +
@@ -444,7 +523,7 @@ std::vector<MeshProblem> MeshReport::problems() const {
 
 bool MeshReport::valid_solid() const {
   return faces > degenerate_faces && closed && manifold && consistently_oriented && outward &&
-         !self_intersecting.value_or(false);
+         misoriented_shells == 0 && !self_intersecting.value_or(false);
 }
 
 std::string MeshReport::describe_problems() const {
@@ -462,7 +541,8 @@ std::string MeshReport::summary() const {
                               manifold ? "manifold" : "non-manifold", plural(components, "component", "components"));
   if (genus) s += fmt::format(", genus {}", *genus);
   s += fmt::format(", Euler characteristic {}", euler_characteristic);
-  if (closed && manifold && consistently_oriented) s += outward ? ", outward" : ", inward";
+  if (closed && manifold && consistently_oriented)
+    s += !outward ? ", inward" : misoriented_shells > 0 ? ", " + plural(misoriented_shells, "misoriented shell", "misoriented shells") : ", outward";
   else if (!consistently_oriented) s += ", inconsistently oriented";
   if (!self_intersecting) s += ", self-intersections not tested";
   else if (*self_intersecting) s += ", " + plural(intersecting_pairs, "self-intersecting pair", "self-intersecting pairs");

@@ -24,6 +24,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -83,7 +84,8 @@ bool same_mesh(const SurfaceMesh& a, const SurfaceMesh& b) { return a.vertices =
 
 /// Orients every closed component outward: with orient_to_bound_a_volume (nesting-aware: a cavity
 /// faces inward) when the mesh is closed and free of self-intersections, else component by
-/// component by the sign of its volume.
+/// component by the sign of its volume (in coordinates scaled to the bounding box, so that the
+/// sign survives extreme coordinate scales).
 void orient_outward(CgalMesh& mesh, RepairResult& result) {
   if (mesh.is_empty()) return;
   auto component = mesh.add_property_map<face_descriptor, std::size_t>("f:medax_component", 0).first;
@@ -96,12 +98,18 @@ void orient_outward(CgalMesh& mesh, RepairResult& result) {
       result.actions.push_back("oriented the components to bound a volume (CGAL orient_to_bound_a_volume)");
     return;
   }
+  CGAL::Bbox_3 box;
+  for (vertex_descriptor v : mesh.vertices()) box += mesh.point(v).bbox();
+  const Vec3 centre(0.5 * (box.xmin() + box.xmax()), 0.5 * (box.ymin() + box.ymax()), 0.5 * (box.zmin() + box.zmax()));
+  const double side = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
+  const double size = side > 0 && std::isfinite(side) ? side : 1.0;
+  const auto unit = [&](Point p) { return Vec3((detail::to_vec(p) - centre) / size); };
   std::vector<double> six_volume(count, 0.0);
   for (face_descriptor f : mesh.faces()) {
     const halfedge_descriptor h = mesh.halfedge(f);
-    const Vec3 a = detail::to_vec(mesh.point(mesh.source(h)));
-    const Vec3 b = detail::to_vec(mesh.point(mesh.target(h)));
-    const Vec3 c = detail::to_vec(mesh.point(mesh.target(mesh.next(h))));
+    const Vec3 a = unit(mesh.point(mesh.source(h)));
+    const Vec3 b = unit(mesh.point(mesh.target(h)));
+    const Vec3 c = unit(mesh.point(mesh.target(mesh.next(h))));
     six_volume[component[f]] += a.dot(b.cross(c));
   }
   std::vector<face_descriptor> flip;

@@ -272,3 +272,71 @@ TEST_CASE("check_mesh on analytic shapes: genus from the Euler characteristic", 
   CHECK(check_mesh(testing::make_box(1, 2, 3, 4)).ok());
   CHECK(check_mesh(testing::make_capsule(0.5, 1.0, 32)).ok());
 }
+
+namespace {
+
+SurfaceMesh scaled(SurfaceMesh m, double s) {
+  for (Vec3& p : m.vertices) p *= s;
+  return m;
+}
+
+/// tests/data/cube.off (side 2, centred at 0) with a cube of side 1 inside it, the inner one
+/// facing inward (a hollow solid) or outward (a solid inside a solid).
+SurfaceMesh cube_in_cube(bool inner_faces_inward) {
+  const SurfaceMesh outer = read_mesh(test::data_dir() / "cube.off");
+  const SurfaceMesh inner = scaled(outer, 0.5);
+  return test::merged(outer, inner_faces_inward ? test::reversed(inner) : inner);
+}
+
+constexpr double kScales[] = {1e-120, 1e-6, 1.0, 1e6, 1e120};
+
+}  // namespace
+
+TEST_CASE("check_mesh: an inward-facing closed mesh is named, with the same message at every scale",
+          "[mesh_check][orientation]") {
+  const SurfaceMesh ellipsoid = read_mesh(test::data_dir() / "ellipsoid.off");
+  const std::string expected = check_mesh(test::reversed(ellipsoid)).describe_problems();
+  CHECK_THAT(expected, Catch::Contains("faces oriented inward") && Catch::Contains("`repair` flips them outward"));
+  for (double s : kScales) {
+    INFO("scale " << s);
+    const MeshReport inward = check_mesh(scaled(test::reversed(ellipsoid), s));
+    CHECK(inward.relative_volume < 0);
+    CHECK_FALSE(inward.valid_solid());
+    REQUIRE(inward.problems().size() == 1);
+    CHECK(inward.problems()[0].kind == MeshProblemKind::InwardOrientation);
+    CHECK(inward.describe_problems() == expected);
+    // The same mesh facing out is valid at every scale (at 1e±120 the raw volume under- or
+    // overflows: the orientation is decided in unit coordinates).
+    const MeshReport outward = check_mesh(scaled(ellipsoid, s));
+    CHECK(outward.valid_solid());
+    CHECK(outward.relative_volume == Approx(-inward.relative_volume));
+  }
+}
+
+TEST_CASE("check_mesh: a hollow cube is valid, a cube inside a cube facing out is a misoriented shell",
+          "[mesh_check][orientation]") {
+  for (double s : kScales) {
+    INFO("scale " << s);
+    const MeshReport hollow = check_mesh(scaled(cube_in_cube(true), s));
+    CHECK(hollow.components == 2);
+    CHECK(hollow.misoriented_shells == 0);
+    CHECK(hollow.valid_solid());
+    CHECK(hollow.relative_volume == Approx(1.0 - 0.125));  // unit outer cube minus the cavity
+
+    const MeshReport nested = check_mesh(scaled(cube_in_cube(false), s));
+    CHECK(nested.misoriented_shells == 1);
+    CHECK_FALSE(nested.valid_solid());
+    REQUIRE(nested.problems().size() == 1);
+    CHECK(nested.problems()[0].kind == MeshProblemKind::MisorientedShells);
+    CHECK(nested.problems()[0].automatic);
+    CHECK(nested.describe_problems() == check_mesh(cube_in_cube(false)).describe_problems());
+    CHECK_THAT(nested.summary(), Catch::Contains("1 misoriented shell"));
+  }
+  // Side by side, both facing out: two solids, nothing nested.
+  const SurfaceMesh cube = read_mesh(test::data_dir() / "cube.off");
+  SurfaceMesh apart = cube;
+  for (Vec3& p : apart.vertices) p.x() += 3.0;
+  const MeshReport two = check_mesh(test::merged(cube, apart));
+  CHECK(two.misoriented_shells == 0);
+  CHECK(two.valid_solid());
+}

@@ -206,3 +206,45 @@ TEST_CASE("repair of every broken mesh: a valid solid of the same shape, or the 
   for (const auto& f : cow.failures) rejected |= f.find("split the surface") != std::string::npos;
   CHECK(rejected);  // CGAL's results would detach the tail: rejected, not returned
 }
+
+namespace {
+
+SurfaceMesh times(SurfaceMesh m, double s) {
+  for (Vec3& p : m.vertices) p *= s;
+  return m;
+}
+
+/// The verdict and the log lines of a repair, which must not depend on the coordinates' scale.
+std::string verdict(const RepairResult& r) {
+  std::string text = r.ok() ? "ok" : "refused";
+  for (const std::string& a : r.actions) text += "\n" + a;
+  for (const std::string& f : r.failures) text += "\n" + f;
+  return text + "\n" + r.before.describe_problems() + "\n" + r.after.describe_problems();
+}
+
+}  // namespace
+
+TEST_CASE("repair_mesh flips an inward-facing ellipsoid and nests a cube in a cube as a cavity, at every scale",
+          "[mesh_repair][orientation]") {
+  const SurfaceMesh inward = test::reversed(read_mesh(test::data_dir() / "ellipsoid.off"));
+  const SurfaceMesh cube = read_mesh(test::data_dir() / "cube.off");
+  const SurfaceMesh nested = test::merged(cube, times(cube, 0.5));  // both facing out
+  const std::string inward_verdict = verdict(repair_mesh(inward));
+  const std::string nested_verdict = verdict(repair_mesh(nested));
+  for (double s : {1e-120, 1e-6, 1.0, 1e6, 1e120}) {
+    INFO("scale " << s);
+    const RepairResult flipped = repair_mesh(times(inward, s));
+    REQUIRE(flipped.ok());
+    CHECK(flipped.after.relative_volume == Approx(-flipped.before.relative_volume));
+    CHECK(verdict(flipped) == inward_verdict);
+
+    const RepairResult hollowed = repair_mesh(times(nested, s));
+    REQUIRE(hollowed.ok());
+    CHECK(hollowed.before.misoriented_shells == 1);
+    CHECK(hollowed.after.misoriented_shells == 0);
+    // The inner cube (1/8 of the outer one's volume) became a cavity: 1 − 1/8, not 1 + 1/8.
+    CHECK(hollowed.before.relative_volume == Approx(1.125));
+    CHECK(hollowed.after.relative_volume == Approx(0.875));
+    CHECK(verdict(hollowed) == nested_verdict);
+  }
+}

@@ -22,6 +22,8 @@ enum class MeshProblemKind {
   NonManifoldVertices,      ///< vertices whose faces form two or more fans
   InconsistentOrientation,  ///< two faces run through their shared edge in the same direction
   InwardOrientation,        ///< closed and consistent, but the signed volume is negative
+  MisorientedShells,        ///< a closed shell faces the wrong way for its nesting (e.g. an outward
+                            ///< shell inside a solid: two overlapping solids, or a cavity facing out)
   SelfIntersections,        ///< triangles meeting outside their shared vertex or edge
   DuplicateVertices,        ///< distinct vertices at exactly the same position
   DegenerateFaces,          ///< repeated corner or collinear corners (zero area)
@@ -61,8 +63,16 @@ struct MeshReport {
   bool closed = false;                  ///< no boundary edge (and at least one face)
   bool manifold = false;                ///< no non-manifold edge or vertex
   bool consistently_oriented = false;   ///< no inconsistent edge
-  double signed_volume = 0;             ///< meaningful when closed and consistently oriented
-  bool outward = false;                 ///< closed, consistent and signed volume > 0
+  double signed_volume = 0;             ///< meaningful when closed and consistently oriented; may
+                                        ///< under- or overflow at extreme coordinate scales
+  /// The signed volume over the cube of the bounding box's longest side: scale-free (computed in
+  /// unit coordinates, so exact in sign at 1e-120 or 1e120 too). Decides the orientation.
+  double relative_volume = 0;
+  bool outward = false;                 ///< closed, consistent and relative volume > 0
+  /// Closed, manifold, consistent meshes: components whose orientation does not fit their nesting.
+  /// A shell inside an even number of others (0: an outer surface) must face out, one inside an
+  /// odd number in (a cavity). Containment by generalized winding number.
+  std::size_t misoriented_shells = 0;
 
   long long euler_characteristic = 0;   ///< V − E + F over referenced vertices
   /// Only for closed manifold meshes: the sum of (2 − χ_c)/2 over components, and per component
@@ -86,7 +96,8 @@ struct MeshReport {
   /// self-intersections (when tested), duplicates, degenerate faces and unreferenced vertices.
   bool ok() const { return problems().empty(); }
   /// What a solid needs (and what the `repair` stage requires): at least one face, closed,
-  /// manifold, consistently and outward oriented, and free of self-intersections when tested.
+  /// manifold, consistently and outward oriented (every shell as its nesting says), and free of
+  /// self-intersections when tested.
   /// Duplicate vertices, degenerate faces and unreferenced vertices are tolerated here.
   bool valid_solid() const;
   /// One line of facts for logs: "26002 vertices, 52000 faces, closed, manifold, genus 0, ...".

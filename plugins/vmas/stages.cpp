@@ -2,6 +2,8 @@
 
 #include "edits.hpp"
 
+#include <medax/services/mesh_check.hpp>
+
 #include <fmt/format.h>
 #include <tbb/task_arena.h>
 
@@ -23,6 +25,34 @@ bool use_mesh(const Shape& shape, Surface surface) {
 }
 
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+/// The likely cause when no shrinking ball shrank: every ball grows along the normal, so normals
+/// pointing out of the solid find no second contact. Only computed once the solver has failed.
+std::string no_ball_hint(const Shape& shape, bool on_mesh) {
+  if (on_mesh) {
+    const services::MeshReport r = services::check_mesh(shape.mesh, {/*self_intersections=*/false});
+    if (r.closed && r.consistently_oriented && r.relative_volume < 0)
+      return "the mesh's faces point inward (its signed volume is negative), so every ball grows out of the "
+             "solid. Put `- plugin: repair` before vmas (it flips the faces outward), or reorient the faces in the "
+             "file";
+    if (!r.valid_solid())
+      return "the mesh does not bound a solid (" + r.summary() + "). Put `- plugin: repair` before vmas: it fixes "
+             "the orientation and names what it cannot fix";
+    return "the mesh is a valid solid; try a larger sb_initial_radius";
+  }
+  return "check that the sample normals point out of the solid (a `sample` stage after `repair` takes them from "
+         "outward faces)";
+}
+
+/// The solver, with the likely cause added when it cannot start.
+VmasSolver start_solver(std::shared_ptr<const VmasInput> input, const VmasOptions& options, const Shape& shape) {
+  const bool on_mesh = input->kind == InputKind::Mesh;
+  try {
+    return VmasSolver(std::move(input), options);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) + ": " + no_ball_hint(shape, on_mesh));
+  }
+}
 
 /// The scripted edits not applied yet, in order, and when the last one was applied.
 class EditSchedule {
@@ -188,7 +218,7 @@ MedialComplex VmasStage::extract(const Shape& shape, Context& ctx) {
   ctx.info(fmt::format("{} {} ({} graph edges), scale {:.4g}; {}", input->size(),
                        input->kind == InputKind::Mesh ? "mesh vertices" : "samples", input->graph_edges.size(),
                        input->scale, summary(options_)));
-  VmasSolver solver(input, options_);
+  VmasSolver solver = start_solver(input, options_, shape);
   EditSchedule edits(parse_edits(edits_), edit_frame_ == EditFrame::Input
                                               ? std::optional<Similarity>(shape.to_input.inverse())
                                               : std::nullopt);

@@ -115,10 +115,11 @@ void add_inputs(const YAML::Node& node, const fs::path& base, SweepConfig& confi
   }
 }
 
-/// A sweep value with its `${NAME}` references replaced by an input's variables.
+/// A sweep value with its `${NAME}` references replaced by an input's variables; `${NAME:-TEXT}`
+/// gives TEXT to an input that does not set NAME.
 struct Expansion {
   std::string text;
-  std::vector<std::string> undefined;  ///< names the input does not define
+  std::vector<std::string> undefined;  ///< names the input does not define (and no default)
   bool malformed = false;              ///< a `${` without `}` or with something other than a name
 };
 
@@ -127,7 +128,9 @@ Expansion expand_variables(const std::string& text, const std::map<std::string, 
   std::size_t from = 0;
   for (auto open = text.find("${"); open != std::string::npos; open = text.find("${", from)) {
     const auto close = text.find('}', open);
-    const std::string name = close == std::string::npos ? "" : text.substr(open + 2, close - open - 2);
+    const std::string inside = close == std::string::npos ? "" : text.substr(open + 2, close - open - 2);
+    const auto dash = inside.find(":-");
+    const std::string name = inside.substr(0, dash);
     out.text += text.substr(from, open - from);
     if (!is_variable_name(name)) {
       out.malformed = true;
@@ -135,8 +138,12 @@ Expansion expand_variables(const std::string& text, const std::map<std::string, 
       break;
     }
     const auto it = values.find(name);
-    if (it == values.end()) out.undefined.push_back(name);
-    out.text += it == values.end() ? text.substr(open, close + 1 - open) : it->second;
+    if (it != values.end()) out.text += it->second;
+    else if (dash != std::string::npos) out.text += inside.substr(dash + 2);
+    else {
+      out.undefined.push_back(name);
+      out.text += text.substr(open, close + 1 - open);
+    }
     from = close + 1;
   }
   out.text += text.substr(from);
@@ -160,8 +167,8 @@ std::string undefined_message(const std::string& name, const std::vector<std::st
   std::string list;
   for (const std::string& input : inputs) list += (list.empty() ? "" : "; ") + input;
   return fmt::format("unknown variable '${{{}}}': not defined for input {}; write `{}=VALUE` after the input's "
-                     "path on its manifest line",
-                     name, list, name);
+                     "path on its manifest line, or give a default: ${{{}:-VALUE}}",
+                     name, list, name, name);
 }
 
 /// Every `${NAME}` in the sweep's values (bundle names too) must be defined for every input.
@@ -179,7 +186,8 @@ void check_variable_uses(const YAML::Node& node, const SweepConfig& config, deta
   for (const fs::path& input : config.inputs) {
     const Expansion e = expand_variables(node.Scalar(), variables_of(config, input));
     if (e.malformed)
-      return diag.error(node, fmt::format("'{}': a variable is written ${{NAME}}, NAME made of letters, digits and _",
+      return diag.error(node, fmt::format("'{}': a variable is written ${{NAME}} or ${{NAME:-DEFAULT}}, NAME made of letters, "
+                                          "digits and _",
                                           node.Scalar()));
     for (const std::string& name : e.undefined) lacking[name].push_back(input_origin(config, input));
   }

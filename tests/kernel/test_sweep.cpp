@@ -469,4 +469,14 @@ TEST_CASE("an unknown or malformed sweep variable is reported with the file and 
   config.inputs = {fs::path(data_file("sphere.obj"))};
   CHECK_THROWS_WITH(medax::expand_sweep(config), Catch::Contains("unknown variable '${factor}'") &&
                                                      Catch::Contains("sphere.obj (not from a manifest line"));
+
+  // ${NAME:-DEFAULT}: the default serves only inputs that do not set NAME.
+  write_text(file, "inputs:\n  - {manifest: list.txt}\nsweep:\n  scale.factor: [\"${factor:-3}\"]\n"
+                   "stages:\n  - {plugin: test_scale, id: scale}\n");
+  config = medax::load_sweep(file);
+  CHECK(medax::expand_sweep(config).at(0).settings == std::vector<std::string>{"scale.factor=2"});
+  config.inputs = {fs::path(data_file("sphere.obj"))};
+  const auto jobs = medax::expand_sweep(config);
+  CHECK(jobs.at(0).settings == std::vector<std::string>{"scale.factor=3"});
+  CHECK(jobs.at(0).name == "0001-sphere-factor=3");
 }

@@ -35,7 +35,8 @@ struct SweepLimits {
 };
 
 /// Variables of one input, from its manifest line (`armadillo.off spheres=83 note=x`): a sweep
-/// value `${spheres}` becomes that input's value in its jobs (e.g. a method's sphere count per model).
+/// value `${spheres}` becomes that input's value in its jobs (e.g. a method's sphere count per
+/// model); `${spheres:-100}` gives 100 to an input that does not set it.
 struct InputVariables {
   std::map<std::string, std::string> values;
   std::string origin;  ///< "MANIFEST:LINE" where they were given

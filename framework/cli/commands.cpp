@@ -20,6 +20,18 @@ void print_load_errors(const Registry& registry) {
   for (const std::string& e : registry.errors()) fmt::print(stderr, "error: {}\n", e);
 }
 
+/// After an "unknown plugin 'NAME'" diagnostic: the load failure of each plugin file that may
+/// have provided NAME.
+void print_unknown_plugin_notes(const Diagnostic& d, const Registry& registry) {
+  const std::string marker = "unknown plugin '";
+  const auto start = d.message.find(marker);
+  if (start == std::string::npos) return;
+  const auto end = d.message.find('\'', start + marker.size());
+  const std::string name = d.message.substr(start + marker.size(), end - start - marker.size());
+  for (const std::string& line : registry.failures_for(name))
+    fmt::print(stderr, "note: '{}' may be in a plugin file that failed to load: {}\n", name, line);
+}
+
 std::size_t widest(const std::vector<std::vector<std::string>>& rows, std::size_t column) {
   std::size_t w = 0;
   for (const auto& row : rows) w = std::max(w, row[column].size());
@@ -46,10 +58,9 @@ std::optional<PipelineConfig> load(const RunArgs& args, const Registry& registry
   try {
     return load_pipeline(args.pipeline, registry, Overrides{args.input, args.settings});
   } catch (const PipelineError& e) {
-    for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());
-    if (!registry.errors().empty()) {
-      fmt::print(stderr, "note: some plugins could not be loaded:\n");
-      print_load_errors(registry);
+    for (const Diagnostic& d : e.diagnostics()) {
+      fmt::print(stderr, "{}\n", d.format());
+      print_unknown_plugin_notes(d, registry);
     }
     return std::nullopt;
   }

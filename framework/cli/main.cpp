@@ -1,6 +1,7 @@
 // medax: run, validate and inspect medial-axis pipelines.
 #include "commands.hpp"
 
+#include <medax/kernel/registry.hpp>
 #include <medax/version.hpp>
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,17 @@
 #include <csignal>
 #include <exception>
 #include <new>
+
+namespace {
+
+/// One warning per plugin file that failed to load, in every command but `plugins` (which lists
+/// them as errors) and sweep jobs (their controller warned): a pipeline that does not need the
+/// file still runs with its usual exit code.
+void warn_broken_plugins() {
+  for (const std::string& line : medax::Registry::global().errors()) fmt::print(stderr, "warning: {}\n", line);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"medax: compute, simplify, structure and evaluate 3D medial axes"};
@@ -63,6 +75,7 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   // The last catch: whatever escapes a command is reported, never `terminate`.
   try {
+    if (!plugins->parsed() && !args.single_job) warn_broken_plugins();
     if (plugins->parsed()) return medax::cli::list_plugins();
     if (describe->parsed()) return medax::cli::describe(name, markdown);
     if (validate->parsed()) return medax::cli::validate(args);

@@ -183,32 +183,50 @@ std::optional<std::string> elf_problem(const fs::path& file) {
 }
 }  // namespace
 
+void Registry::fail(const fs::path& file, std::string line) {
+  failed_files_.emplace_back(file, line);
+  errors_.push_back(std::move(line));
+}
+
+std::vector<std::string> Registry::failures_for(std::string_view stage) const {
+  std::vector<std::string> lines;
+  for (const auto& [file, line] : failed_files_) {
+    std::string package = file.stem().string();
+    for (const std::string_view prefix : {"lib", "medax_"})
+      if (package.rfind(prefix, 0) == 0) package.erase(0, prefix.size());
+    const bool provides = stage == package || (stage.size() > package.size() &&
+                                               stage.substr(0, package.size()) == package && stage[package.size()] == '_');
+    if (provides) lines.push_back(line);
+  }
+  return lines;
+}
+
 bool Registry::load_file(const fs::path& file) {
   const std::string where = fmt::format("plugin {}", file.string());
   // Checked before dlopen: a truncated library crashes the loader instead of failing.
   if (const auto problem = elf_problem(file)) {
-    errors_.push_back(fmt::format("{}: {}", where, *problem));
+    fail(file, fmt::format("{}: {}", where, *problem));
     return false;
   }
   auto library = std::make_unique<boost::dll::shared_library>();
   boost::dll::fs::error_code ec;
   library->load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
   if (ec) {
-    errors_.push_back(fmt::format("{}: cannot be loaded: {}; rebuild it or remove it from the plugin path", where,
+    fail(file, fmt::format("{}: cannot be loaded: {}; rebuild it or remove it from the plugin path", where,
                                   loader_message(file)));
     return false;
   }
   if (!library->has("medax_plugin_entry")) {
-    errors_.push_back(fmt::format("{}: not a medax plugin (no medax_plugin_entry symbol; did it use MEDAX_PLUGIN?)", where));
+    fail(file, fmt::format("{}: not a medax plugin (no medax_plugin_entry symbol; did it use MEDAX_PLUGIN?)", where));
     return false;
   }
   const auto& entry = library->get<const PluginEntry>("medax_plugin_entry");
   if (entry.magic != kPluginMagic) {
-    errors_.push_back(fmt::format("{}: medax_plugin_entry has a wrong magic number; the file is corrupt", where));
+    fail(file, fmt::format("{}: medax_plugin_entry has a wrong magic number; the file is corrupt", where));
     return false;
   }
   if (entry.abi_version != kAbiVersion) {
-    errors_.push_back(fmt::format("{}: built for medax ABI {} but this kernel has ABI {}; rebuild the plugin "
+    fail(file, fmt::format("{}: built for medax ABI {} but this kernel has ABI {}; rebuild the plugin "
                                   "against medax {}",
                                   where, entry.abi_version, kAbiVersion, kVersion));
     return false;
@@ -217,7 +235,7 @@ bool Registry::load_file(const fs::path& file) {
   try {
     entry.register_stages(registrar);
   } catch (const std::exception& e) {
-    errors_.push_back(fmt::format("{}: registration failed: {}", where, e.what()));
+    fail(file, fmt::format("{}: registration failed: {}", where, e.what()));
     return false;
   }
   libraries_->file_names.insert(file.filename().string());

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <thread>
 
@@ -177,4 +178,39 @@ TEST_CASE("SIGINT during a run stops it cleanly with exit 130 and an interrupted
   CHECK_THAT(log, Catch::Contains("interrupted by SIGINT"));
   CHECK_THAT(log, Catch::Contains("run interrupted at"));
   CHECK_THAT(log, !Catch::Contains("stage 'test_count' (test_count) done"));
+}
+
+TEST_CASE("a broken plugin on the path is one warning in validate, run and describe; exit codes unchanged",
+          "[cli][faults]") {
+  const auto dir = scratch_dir("cli_faults_broken_plugin");
+  fs::create_directories(dir / "plugins");
+  write_text(dir / "plugins" / "libmedax_broken.so", "not a shared library\n");
+  const std::string path = kGood + ":" + (dir / "plugins").string();
+  const std::string warning = "warning: plugin " + (dir / "plugins" / "libmedax_broken.so").string() + ": ";
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n  - plugin: test_count\n"));
+  for (const std::string& args : {"validate " + quoted(file), "run --quiet " + quoted(file) + " --out " + quoted(dir / "run"),
+                                  std::string("describe test_count")}) {
+    INFO("medax " << args);
+    const auto r = run_medax(args, path, dir);
+    CHECK(r.code == 0);
+    CHECK_THAT(r.err, Catch::StartsWith(warning));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);  // one line, nothing else
+  }
+}
+
+TEST_CASE("a pipeline naming a stage of a broken plugin gets the load failure with its unknown-plugin error",
+          "[cli][faults]") {
+  const auto dir = scratch_dir("cli_faults_broken_plugin_needed");
+  fs::create_directories(dir / "plugins");
+  write_text(dir / "plugins" / "libmedax_broken.so", "not a shared library\n");
+  const std::string path = kGood + ":" + (dir / "plugins").string();
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: broken_stage\n"));
+  const auto r = run_medax("validate " + quoted(file), path, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("error: unknown plugin 'broken_stage'"));
+  CHECK_THAT(r.err, Catch::Contains("note: 'broken_stage' may be in a plugin file that failed to load: plugin " +
+                                    (dir / "plugins" / "libmedax_broken.so").string()));
+  // A stage no broken file would provide gets no such note.
+  const auto other = write_text(dir / "q.yaml", cube_pipeline("  - plugin: no_such_stage\n"));
+  CHECK_THAT(run_medax("validate " + quoted(other), path, dir).err, !Catch::Contains("note: 'no_such_stage'"));
 }

@@ -268,3 +268,15 @@ TEST_CASE("suggest() offers the closest registered names best first", "[registry
   CHECK(prefix.front() == "test_oracle_centroid");
   CHECK(registry.suggest("completely_unrelated_words").empty());
 }
+
+TEST_CASE("failures_for names the failed file that may have provided a stage", "[registry]") {
+  const fs::path dir = folder_with_broken("failures_for", "not a shared library\n");
+  Registry registry;
+  registry.load_directory(dir);
+  REQUIRE(registry.errors().size() == 1);
+  // libmedax_broken.so would provide `broken` and `broken_*`.
+  CHECK(registry.failures_for("broken") == registry.errors());
+  CHECK(registry.failures_for("broken_dual") == registry.errors());
+  CHECK(registry.failures_for("brokenness").empty());
+  CHECK(registry.failures_for("test_scale").empty());
+}

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace medax {
@@ -46,6 +47,10 @@ class Registry {
 
   /// One line per plugin that could not be loaded or registered.
   const std::vector<std::string>& errors() const { return errors_; }
+  /// The error lines of the plugin files that failed to load and may have provided `stage`: by
+  /// the medax_add_plugin naming, libmedax_PKG.so provides PKG and PKG_* (a file that did not
+  /// load cannot say what it holds).
+  std::vector<std::string> failures_for(std::string_view stage) const;
   const RegisteredStage* find(std::string_view name) const;
   /// Up to three registered names closest to `name` (edit distance), best first.
   std::vector<std::string> suggest(std::string_view name) const;
@@ -61,6 +66,9 @@ class Registry {
   std::unique_ptr<Libraries> libraries_;
   std::vector<RegisteredStage> stages_;
   std::vector<std::string> errors_;
+  /// The files that failed to load, each with its line in errors_.
+  std::vector<std::pair<std::filesystem::path, std::string>> failed_files_;
+  void fail(const std::filesystem::path& file, std::string line);
 };
 
 }  // namespace medax

@@ -62,6 +62,20 @@ std::string refusal(const MedialMesh& medial, const std::vector<Vec3>& sites, co
 
 }  // namespace
 
+OptimisationOptions resolve_delta(const OptimisationOptions& options, const TargetMesh& target) {
+  OptimisationOptions resolved = options;
+  if (options.delta_rule == DeltaRule::MeanEdgeLength)
+    resolved.coverage.delta = target.mean_edge_length() / target.scale();
+  return resolved;
+}
+
+FitOptions search_fit_options(const OptimisationOptions& options) {
+  FitOptions fit = options.fit;
+  fit.smoothness = options.search_smoothness;
+  fit.templates.sphere_vertices = options.search_sphere_vertices;
+  return fit;
+}
+
 std::vector<SkeletonElement> skeleton_elements(const Skeleton& skeleton) {
   std::vector<SkeletonElement> elements;
   const auto& v = skeleton.vertices;
@@ -133,7 +147,7 @@ std::vector<Primitive> EnergyEvaluator::fit(const std::vector<SkeletonElement>& 
     missing.push_back(element);
     missing_keys.push_back(key);
   }
-  std::vector<Primitive> fresh = fit_primitives(target_, missing, options_.fit);
+  std::vector<Primitive> fresh = fit_primitives(target_, missing, search_fit_options(options_));
   for (std::size_t i = 0; i < fresh.size(); ++i) cache_->entries[missing_keys[i]] = {std::move(fresh[i]), now};
   fitted = missing.size();
   std::vector<Primitive> primitives;
@@ -223,8 +237,8 @@ class Schedule {
  public:
   Schedule(const TargetMesh& target, const MedialMesh& medial, const OptimisationOptions& options,
            const std::function<void(const IterationLog&)>& on_iteration, const std::function<bool()>& cancelled)
-      : target_(target), medial_(medial), options_(options), crossing_(target.mesh()),
-        evaluator_(target, medial, crossing_, options), on_iteration_(on_iteration), cancelled_(cancelled) {}
+      : target_(target), medial_(medial), options_(resolve_delta(options, target)), crossing_(target.mesh()),
+        evaluator_(target, medial, crossing_, options_), on_iteration_(on_iteration), cancelled_(cancelled) {}
 
   OptimisationResult run();
 
@@ -232,15 +246,12 @@ class Schedule {
   double objective(const std::vector<double>& x);
   void run_round(std::vector<Vec3>& free, int budget);
   std::vector<Vec3> new_sites();
-  OptimisationResult finish(std::string reason) {
-    result_.stop_reason = std::move(reason);
-    return std::move(result_);
-  }
+  OptimisationResult finish(std::string reason);
   bool out_of_budget() const { return iteration_ >= options_.max_iterations; }
 
   const TargetMesh& target_;
   const MedialMesh& medial_;
-  const OptimisationOptions& options_;
+  const OptimisationOptions options_;
   SurfaceCrossing crossing_;
   EnergyEvaluator evaluator_;
   const std::function<void(const IterationLog&)>& on_iteration_;
@@ -340,8 +351,12 @@ std::vector<Vec3> Schedule::new_sites() {
     result_.seconds_tetrahedralisation = seconds_since(start);
     result_.tets = tets_.size();
   }
+  const auto start = Clock::now();
   const std::vector<UncoveredRegion> regions =
       uncovered_regions(tets_, covered_tets(tets_, result_.best.primitives));
+  RoundLog& round = result_.additions.emplace_back();
+  round.uncovered_regions = regions.size();
+  if (!regions.empty()) round.largest_region_volume = regions.front().volume;
   const double min_distance = options_.min_site_distance * target_.scale();
   std::vector<Vec3> sites, taken = frozen_;
   for (const UncoveredRegion& region : regions) {
@@ -353,12 +368,28 @@ std::vector<Vec3> Schedule::new_sites() {
     sites.push_back(site);
     taken.push_back(site);
   }
+  round.sites_added = sites.size();
+  round.seconds = seconds_since(start);
   return sites;
 }
 
+OptimisationResult Schedule::finish(std::string reason) {
+  // The best diagram refitted with the final options; its coverage and E_cov follow.
+  const auto start = Clock::now();
+  Diagram& best = result_.best;
+  best.primitives = fit_primitives(target_, best.elements, options_.fit);
+  best.coverage = coverage(target_, best.primitives, options_.coverage);
+  best.energy.total += best.coverage.energy - best.energy.coverage;
+  best.energy.coverage = best.coverage.energy;
+  result_.seconds_final_fit = seconds_since(start);
+  result_.stop_reason = std::move(reason);
+  return std::move(result_);
+}
+
 OptimisationResult Schedule::run() {
+  result_.delta = options_.coverage.delta;
   std::vector<Vec3> free;
-  for (Index v : farthest_point_sites(medial_, options_.initial_sites, options_.start_vertex))
+  for (Index v : farthest_point_sites(medial_, options_.initial_sites, static_cast<Index>(options_.start_vertex)))
     free.push_back(medial_.points()[v]);
   int budget = options_.first_iterations;
   double previous_best = std::numeric_limits<double>::infinity();

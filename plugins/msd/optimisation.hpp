@@ -24,9 +24,15 @@ enum class Projection {
   FacetCentroid,  ///< the centroid of M's closest facet; two sites on one facet are rejected ([C])
 };
 
+/// How δ of E_cov is set.
+enum class DeltaRule {
+  Value,           ///< CoverageOptions::delta as given (paper: 1e-4 of the unit box)
+  MeanEdgeLength,  ///< δ = ℓ̄, the mean edge length of S (what the authors' code effectively uses)
+};
+
 struct OptimisationOptions {
   std::size_t initial_sites = 10;   ///< |V⁽⁰⁾| (paper: 10)
-  Index start_vertex = 0;           ///< first farthest-point vertex of M ([C]: 0)
+  std::size_t start_vertex = 0;     ///< first farthest-point vertex of M ([C]: 0)
   double centroid_weight = 1;       ///< c1
   double count_weight = 1e-3;       ///< c2
   Projection projection = Projection::ClosestPoint;
@@ -37,8 +43,15 @@ struct OptimisationOptions {
   int stall = 5;                    ///< evaluations without decrease that end a round
   int max_iterations = 300;         ///< energy evaluations in all
   double xtol = 1e-2;               ///< Nelder–Mead xtol_abs (unit box)
-  std::string tetgen_switches = "pq1.05";  ///< [C]'s tetrahedralisation of S
-  FitOptions fit;
+  /// TetGen switches for the uncovered-volume tets. [C] uses "pq1.05", which did not finish in
+  /// 100 s on hand.obj (TetGen 1.5); "pq2" takes 8 s there.
+  std::string tetgen_switches = "pq2";
+  DeltaRule delta_rule = DeltaRule::MeanEdgeLength;
+  FitOptions fit;  ///< the final fit of the best diagram
+  /// While optimising, the fit uses `fit` with these two changed: [C] drops the smoothness
+  /// there; a coarser template keeps an energy evaluation near a second on 2 cores.
+  double search_smoothness = 0;
+  std::size_t search_sphere_vertices = 400;
   CoverageOptions coverage;
   ConstructionOptions construction;
 };
@@ -74,14 +87,31 @@ struct IterationLog {
   double seconds_projection = 0, seconds_construction = 0, seconds_fitting = 0, seconds_energy = 0;
 };
 
+/// What happened between two rounds.
+struct RoundLog {
+  std::size_t uncovered_regions = 0;
+  std::size_t sites_added = 0;
+  double largest_region_volume = 0;
+  double seconds = 0;  ///< coverage of the tets and ranking (tetrahedralisation excluded)
+};
+
 struct OptimisationResult {
   Diagram best;
   std::vector<IterationLog> log;
+  std::vector<RoundLog> additions;
   int rounds = 0;
   std::string stop_reason;
   double seconds_tetrahedralisation = 0;
   std::size_t tets = 0;
+  double delta = 0;  ///< δ used, in units of TargetMesh::scale()
+  double seconds_final_fit = 0;
 };
+
+/// The options with δ set by `delta_rule` for this S.
+OptimisationOptions resolve_delta(const OptimisationOptions& options, const TargetMesh& target);
+
+/// The fit options of an energy evaluation (`fit` with the search smoothness and template size).
+FitOptions search_fit_options(const OptimisationOptions& options);
 
 /// The skeleton's elements: every vertex, every unique edge, every triangle.
 std::vector<SkeletonElement> skeleton_elements(const Skeleton& skeleton);

@@ -1,0 +1,204 @@
+#include "stages.hpp"
+
+#include "medial_json.hpp"
+#include "output.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+namespace medax::msd {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+const char* kRadiusRule = "vertex radius = mean ρ of the vertex primitive (ρ0 when its fit failed)";
+
+std::string iteration_line(const IterationLog& it) {
+  const Energy& e = it.energy;
+  const std::string energy =
+      e.rejected ? fmt::format("rejected ({})", e.rejection)
+                 : fmt::format("E {:.5f} (cov {:.5f}, cent {:.5f}, count {:.0f})", e.total, e.coverage, e.centroid,
+                               e.count);
+  return fmt::format("iteration {} round {}: {} sites, {}, best {:.5f}; {} fitted; projection {:.3f} s, "
+                     "construction {:.3f} s, fitting {:.3f} s, energy {:.3f} s",
+                     it.iteration, it.round, it.sites, energy, it.best, it.fitted, it.seconds_projection,
+                     it.seconds_construction, it.seconds_fitting, it.seconds_energy);
+}
+
+}  // namespace
+
+StageInfo MsdStage::describe() {
+  return {"msd",
+          "Medial Skeletal Diagram (Guo et al. 2024): a sparse skeleton on the medial mesh with a fitted "
+          "enveloping primitive per vertex, edge and triangle, sites placed by Nelder-Mead on coverage",
+          "docs/plugins/msd.md"};
+}
+
+void MsdStage::declare(ParamBinder& p) {
+  declare_optimisation(p);
+  declare_fitting(p);
+  declare_construction(p);
+  p.add("reconstruction", reconstruction_, {{"union", ReconstructionMode::Union}, {"none", ReconstructionMode::None}},
+        "Ŝ as the CGAL corefinement union of the primitive meshes (published for evaluation, written as "
+        "<id>_reconstruction.off), or not built");
+  p.add("write_primitives", write_primitives_, "write every primitive into <id>_primitives.ply");
+}
+
+void MsdStage::declare_optimisation(ParamBinder& p) {
+  OptimisationOptions& o = options_;
+  p.add("n_init", o.initial_sites, "initial sites |V⁽⁰⁾|, farthest points on M's graph distances (paper: 10)")
+      .range(1, 1e6);
+  p.add("start_vertex", o.start_vertex, "M vertex the farthest-point selection starts at (authors' code: 0)");
+  p.add("c1", o.centroid_weight, "weight of E_cent (paper: 1)").range(0, 1e9);
+  p.add("c2", o.count_weight, "weight of E_count = |V̂| − |V| (paper: 1e-3)").range(0, 1e9);
+  p.add("projection", o.projection,
+        {{"closest_point", Projection::ClosestPoint}, {"facet_centroid", Projection::FacetCentroid}},
+        "trial point → site: closest point of M (paper) or centroid of M's closest facet (authors' code; two "
+        "sites on one facet reject the trial)");
+  p.add("min_site_distance", o.min_site_distance, "trials with two sites closer than this are rejected (E = 1e3)")
+      .range(0, 1).in_unit("unit box");
+  p.add("first_iterations", o.first_iterations, "energy evaluations of the first round (paper: 50)").range(1, 1e6);
+  p.add("add_every", o.add_every, "energy evaluations of every later round (paper: 30)").range(1, 1e6);
+  p.add("add_count", o.add_count, "sites added per round at the largest uncovered regions (paper: 3 or 5)")
+      .range(0, 1e6);
+  p.add("stall", o.stall, "a round ends after this many evaluations without decrease (paper: 5)").range(1, 1e6);
+  p.add("max_iterations", o.max_iterations, "energy evaluations in all (the paper gives no value)").range(1, 1e7);
+  p.add("xtol", o.xtol, "Nelder-Mead xtol_abs (authors' code: 1e-2)").range(0, 1).in_unit("unit box");
+  p.add("tetgen_switches", o.tetgen_switches, "TetGen switches for the uncovered-volume tets (authors' code: pq1.05)");
+  p.add("delta_rule", o.delta_rule, {{"mean_edge_length", DeltaRule::MeanEdgeLength}, {"value", DeltaRule::Value}},
+        "δ of E_cov: ℓ̄, the mean edge length of S (authors' code), or `delta` (paper: 1e-4, below the chord "
+        "error of T_P, so S's vertices are rarely covered)");
+  p.add("delta", o.coverage.delta, "δ when delta_rule is `value`: a vertex of S is covered when ℰ(v; T_P) < δ")
+      .range(0, 1).in_unit("unit box");
+  p.add("coverage_test", o.coverage.test,
+        {{"radial", CoverageTest::Radial}, {"signed_distance", CoverageTest::SignedDistance}},
+        "ℰ by the radial test of Eq. 3 or the signed distance to T_P");
+}
+
+void MsdStage::declare_fitting(ParamBinder& p) {
+  FitOptions& f = options_.fit;
+  p.add("smoothness", f.smoothness, "λ, weight of E_smooth = ρᵀLρ (paper: 1; authors' code 0.1, and 0 while "
+                                    "optimising)").range(0, 1e9);
+  p.add("w", f.expansion, "w, weight of E_exp (paper: 10; authors' code 2)").range(0, 1e12);
+  p.add("w_hat", f.contact, "ŵ, penalty weight on ρ_i > ρmax_i (paper: 1e4)").range(0, 1e15);
+  p.add("progressions", f.progressions, "times the target radius is raised (paper: 25)").range(1, 1e4);
+  p.add("step", f.step_fraction, "raise per progression as a fraction of ρ0 (paper: 0.1)").range(0, 10);
+  p.add("inner", f.max_iterations, "penalty iterations per progression at most (paper: 15)").range(1, 1e4);
+  p.add("search_smoothness", options_.search_smoothness, "λ while optimising (authors' code: 0); the final fit "
+                                                          "uses `smoothness`").range(0, 1e9);
+  p.add("search_sphere_vertices", options_.search_sphere_vertices, "template size while optimising; the final fit "
+                                                                   "uses `sphere_vertices`").range(12, 1e6);
+  p.add("neighbour_cap", f.neighbour_cap, "authors' code: a direction's raise shrinks as it outgrows its smallest "
+                                          "neighbour (off in the paper)");
+  p.add("sphere_vertices", f.templates.sphere_vertices, "vertices of the vertex template; sets the angular step of "
+                                                        "every template (paper: 1,588)").range(12, 1e6);
+  p.add("max_segments", f.templates.max_segments, "cap on template segments along an edge or triangle side")
+      .range(1, 1e5);
+}
+
+void MsdStage::declare_construction(ParamBinder& p) {
+  ConstructionOptions& c = options_.construction;
+  p.add("multi_interface", c.multi_interface, "S3 d: a polyline per extra interface between two cells");
+  p.add("max_bisection_depth", c.max_bisection_depth, "S3 e: an edge crossing S is split into at most 2^depth parts")
+      .range(0, 30);
+  p.add("collapse_angle", c.collapse_angle_deg, "S3 g: degree-2 vertices straighter than this are removed")
+      .range(0, 180).in_unit("deg");
+}
+
+void MsdStage::check_scene(const Scene& scene) const {
+  if (scene.shape.mesh.faces.size() < 4)
+    throw std::invalid_argument("the shape has no closed surface mesh; MSD fits primitives against S");
+  if (scene.medial && scene.medial->num_vertices() == 0)
+    throw std::invalid_argument("the medial mesh M is empty; give an extraction stage (e.g. vmas + vmas_dual) "
+                                "or msd_medial with the authors' JSON");
+}
+
+void MsdStage::simplify(const Shape& shape, MedialComplex& medial, Context& ctx) {
+  const auto start = Clock::now();
+  TargetMesh target(shape.mesh);
+  MedialMesh mesh = MedialMesh::from_complex(medial, 1e-9 * target.scale());
+  ctx.info(fmt::format("S: {} vertices, {} triangles, ℓ̄ {:.4g}; M: {} vertices, {} triangles, {} dangling edges",
+                       shape.mesh.vertices.size(), shape.mesh.faces.size(), target.mean_edge_length(),
+                       mesh.points().size(), mesh.triangles().size(), mesh.dangling_edges().size()));
+  const auto on_iteration = [&](const IterationLog& it) {
+    ctx.progress(static_cast<double>(it.iteration) / options_.max_iterations, "MSD optimisation");
+    ctx.info(iteration_line(it));
+  };
+  const OptimisationResult result = optimise(target, mesh, options_, on_iteration, [&] { return ctx.cancelled(); });
+  for (const RoundLog& round : result.additions)
+    ctx.info(fmt::format("{} uncovered regions (largest {:.3g}), {} sites added; {:.3f} s", round.uncovered_regions,
+                         round.largest_region_volume, round.sites_added, round.seconds));
+  ctx.info(fmt::format("stopped after {} iterations in {} rounds: {}; δ = {:.3g} of the unit box; {} tets in {:.3f} s",
+                       result.log.size(), result.rounds, result.stop_reason, result.delta, result.tets,
+                       result.seconds_tetrahedralisation));
+  ctx.info(fmt::format("final fit of {} primitives: {:.3f} s", result.best.primitives.size(), result.seconds_final_fit));
+  medial = skeleton_complex(result.best);
+  write_outputs(shape, result, seconds_since(start), ctx);
+}
+
+void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& result, double seconds_total,
+                             Context& ctx) {
+  const Diagram& best = result.best;
+  Summary summary;
+  summary.counts = count_elements(best);
+  summary.input_vertices = shape.mesh.vertices.size();
+  summary.input_triangles = shape.mesh.faces.size();
+  summary.covered_area = -best.coverage.energy;
+  summary.covered_vertices =
+      static_cast<double>(std::count(best.coverage.covered.begin(), best.coverage.covered.end(), 1)) /
+      std::max<std::size_t>(1, best.coverage.covered.size());
+  summary.result = &result;
+  summary.radius_rule = kRadiusRule;
+  if (write_primitives_)
+    ctx.write_output(ctx.stage_id() + "_primitives.ply",
+                     [&](std::ostream& out) { write_primitives_ply(out, best.primitives, shape.to_input); });
+  if (reconstruction_ == ReconstructionMode::Union) {
+    const auto start = Clock::now();
+    Reconstruction union_mesh = reconstruct_union(best.primitives, shape.to_input);
+    summary.seconds_reconstruction = seconds_since(start);
+    for (const std::string& skipped : union_mesh.skipped) ctx.warn("reconstruction: " + skipped);
+    ctx.publish(kReconstruction, std::move(union_mesh));
+  }
+  summary.seconds_total = seconds_total + summary.seconds_reconstruction;
+  ctx.write_output(ctx.stage_id() + "_msd.json", [&](std::ostream& out) { write_summary_json(out, summary); });
+  const Counts& c = summary.counts;
+  ctx.info(fmt::format("MSD: {} vertices, {} unique edges, {} triangles (N_d {}, N_c {}), coverage {:.4f} of the "
+                       "area, {} failed primitives",
+                       c.vertices, c.edges, c.triangles, c.discrete, c.continuous, summary.covered_area,
+                       c.failed_primitives));
+}
+
+StageInfo MsdMedialStage::describe() {
+  return {"msd_medial", "Reads the medial mesh M from the MSD authors' JSON (input-ma.json); radii = distance to S",
+          "docs/plugins/msd.md"};
+}
+
+void MsdMedialStage::declare(ParamBinder& p) {
+  p.add("medial_file", medial_file_, "path of the authors' medial-mesh JSON (vertices, edges, triangles)");
+}
+
+void MsdMedialStage::check_params() const {
+  if (medial_file_.empty())
+    throw std::invalid_argument("`medial_file` is empty; give the path of the authors' input-ma.json");
+}
+
+MedialComplex MsdMedialStage::extract(const Shape& shape, Context& ctx) {
+  MedialComplex medial = read_medial_json(medial_file_);
+  const Similarity to_current = shape.to_input.inverse();  // the file is in the input mesh's frame
+  for (Vec3& c : medial.centres) c = to_current.apply(c);
+  if (!shape.mesh.faces.empty()) {
+    const TargetMesh target(shape.mesh);
+    for (std::size_t v = 0; v < medial.num_vertices(); ++v) medial.radii[v] = target.distance(medial.centres[v]);
+  }
+  ctx.info(fmt::format("{}: {} vertices, {} edges, {} triangles", medial_file_, medial.num_vertices(),
+                       medial.edges.size(), medial.faces.size()));
+  return medial;
+}
+
+}  // namespace medax::msd

@@ -29,7 +29,7 @@ namespace {
 
 using namespace medax;
 
-std::filesystem::path meshes_dir = MEDAX_SHARED_MESHES_DIR;
+std::filesystem::path meshes_dir = MEDAX_CORPUS_DIR;
 
 const SurfaceMesh& mesh(const std::string& file) {
   static std::map<std::string, SurfaceMesh> cache;

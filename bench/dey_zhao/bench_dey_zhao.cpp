@@ -32,7 +32,7 @@ namespace {
 using namespace medax;
 using Clock = std::chrono::steady_clock;
 
-std::filesystem::path meshes_dir = MEDAX_SHARED_MESHES_DIR;
+std::filesystem::path meshes_dir = MEDAX_CORPUS_DIR;
 
 const SurfaceMesh& koala() {
   static const SurfaceMesh mesh = read_mesh(meshes_dir / "koala.obj");

@@ -23,7 +23,7 @@ const char* const kMeshes[] = {"bunny.obj", "hand.obj", "turbine.off", "hilbert.
 const SurfaceMesh& input(const std::string& name) {
   static std::map<std::string, SurfaceMesh> cache;
   auto it = cache.find(name);
-  if (it == cache.end()) it = cache.emplace(name, read_mesh(std::string(MEDAX_SHARED_MESHES_DIR) + "/" + name)).first;
+  if (it == cache.end()) it = cache.emplace(name, read_mesh(std::string(MEDAX_CORPUS_DIR) + "/" + name)).first;
   return it->second;
 }
 

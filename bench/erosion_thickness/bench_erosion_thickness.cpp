@@ -39,7 +39,7 @@ struct Input {
 const Input& input() {
   static const std::unique_ptr<Input> in = [] {
     auto data = std::make_unique<Input>();
-    const SurfaceMesh mesh = read_mesh(std::string(MEDAX_SHARED_MESHES_DIR) + "/armadillo.off");
+    const SurfaceMesh mesh = read_mesh(std::string(MEDAX_CORPUS_DIR) + "/armadillo.off");
     std::vector<Vec3> points;
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
       if (i % 7 < 4) points.push_back(mesh.vertices[i]);

@@ -30,7 +30,7 @@ const Input& voronoi_input(const std::string& file) {
   static std::map<std::string, Input> cache;
   auto it = cache.find(file);
   if (it != cache.end()) return it->second;
-  const SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_SHARED_MESHES_DIR) / file);
+  const SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_CORPUS_DIR) / file);
   Input in{voronoi::interior_voronoi(mesh.vertices, mesh), bbox_diagonal(mesh.vertices)};
   return cache.emplace(file, std::move(in)).first->second;
 }

@@ -18,7 +18,7 @@ namespace {
 using namespace medax;
 
 const SurfaceMesh& armadillo() {
-  static const SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_SHARED_MESHES_DIR) / "armadillo.off");
+  static const SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_CORPUS_DIR) / "armadillo.off");
   return mesh;
 }
 

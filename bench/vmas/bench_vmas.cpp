@@ -33,7 +33,7 @@ const SurfaceMesh& unit_box_mesh(const std::string& file) {
   static std::map<std::string, SurfaceMesh> cache;
   auto it = cache.find(file);
   if (it != cache.end()) return it->second;
-  SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_SHARED_MESHES_DIR) / file);
+  SurfaceMesh mesh = read_mesh(std::filesystem::path(MEDAX_CORPUS_DIR) / file);
   Vec3 lo = Vec3::Constant(1e300), hi = -lo;
   for (const Vec3& p : mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double s = (hi - lo).maxCoeff();

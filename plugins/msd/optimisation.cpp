@@ -105,19 +105,10 @@ std::vector<Vec3> project_sites(const MedialMesh& medial, const std::vector<Vec3
 }
 
 double centroid_energy(const std::vector<Vec3>& sites, const std::vector<RvdPiece>& pieces) {
-  // Triangle pieces weigh by area; a cell made only of dangling edges weighs its pieces by length.
-  std::vector<Vec3> area_sum(sites.size(), Vec3::Zero()), length_sum(sites.size(), Vec3::Zero());
-  std::vector<double> area(sites.size(), 0), length(sites.size(), 0);
-  for (const RvdPiece& piece : pieces) {
-    const bool triangle = piece.polygon.size() > 2;
-    (triangle ? area_sum : length_sum)[piece.cell] += piece.measure * piece.centroid;
-    (triangle ? area : length)[piece.cell] += piece.measure;
-  }
+  const std::vector<Vec3> centroids = cell_centroids(pieces, sites.size());
   double energy = 0;
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    if (area[i] > 0) energy += (sites[i] - area_sum[i] / area[i]).squaredNorm();
-    else if (length[i] > 0) energy += (sites[i] - length_sum[i] / length[i]).squaredNorm();
-  }
+  for (std::size_t i = 0; i < sites.size(); ++i)
+    if (centroids[i].allFinite()) energy += (sites[i] - centroids[i]).squaredNorm();  // NaN: a cell without pieces
   return energy;
 }
 

@@ -35,6 +35,7 @@ OptimisationOptions small_options(std::size_t sites) {
   options.first_iterations = 8;
   options.add_every = 6;
   options.max_iterations = 20;
+  options.search_sphere_vertices = options.fit.templates.sphere_vertices;  // the chord error of δ's choice
   return options;
 }
 
@@ -70,7 +71,8 @@ TEST_CASE("msd optimisation: a capsule is one edge primitive between two sites o
   const TargetMesh capsule(testing::make_capsule(0.3, 1.0, 64));
   const MedialMesh axis({{0, 0, -1}, {0, 0, 0}, {0, 0, 1}}, {}, {{0, 1}, {1, 2}});
   const OptimisationOptions options = small_options(2);
-  EnergyEvaluator evaluator(capsule, axis, SurfaceCrossing(capsule.mesh()), resolve_delta(options, capsule));
+  const SurfaceCrossing crossing(capsule.mesh());
+  EnergyEvaluator evaluator(capsule, axis, crossing, resolve_delta(options, capsule));
   const Diagram d = evaluator.evaluate({}, {{0, 0, -1}, {0, 0, 1}});
   check_diagram(d, axis);
   CHECK(d.skeleton.vertices.size() == 2);
@@ -84,7 +86,8 @@ TEST_CASE("msd optimisation: a star-shaped ellipsoid is covered by one vertex pr
   const TargetMesh ellipsoid(testing::make_ellipsoid(1.0, 0.7, 0.5, 4));
   const MedialMesh m = centre_patch(1e-3);
   const OptimisationOptions options = small_options(1);
-  EnergyEvaluator evaluator(ellipsoid, m, SurfaceCrossing(ellipsoid.mesh()), resolve_delta(options, ellipsoid));
+  const SurfaceCrossing crossing(ellipsoid.mesh());
+  EnergyEvaluator evaluator(ellipsoid, m, crossing, resolve_delta(options, ellipsoid));
   const Diagram d = evaluator.evaluate({}, {Vec3::Zero()});
   REQUIRE(d.primitives.size() == 1);
   CHECK(d.coverage.energy < -0.99);

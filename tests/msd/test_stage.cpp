@@ -21,6 +21,7 @@ namespace {
 /// A context that keeps the files a stage writes.
 class RecordingContext : public BasicContext {
  public:
+  RecordingContext() : BasicContext(0, false, "msd") {}
   std::filesystem::path write_output(const std::string& name,
                                      const std::function<void(std::ostream&)>& body) override {
     std::ostringstream out;

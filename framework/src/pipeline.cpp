@@ -249,6 +249,70 @@ fs::path resolve_path(const fs::path& base_dir, const std::string& text) {
   return fs::absolute(p).lexically_normal();
 }
 
+/// The order rules of a stage list, checked stage by stage: conditioning before the first
+/// extraction (and not at all after `medial_input:`), an extraction or `medial_input:` (not both)
+/// before any other role, and every part of the shape a stage needs made by an earlier stage.
+class StageOrder {
+ public:
+  StageOrder(fs::path medial_input, detail::Diagnostics& check)
+      : medial_input_(std::move(medial_input)), has_medial_(!medial_input_.empty()), check_(check) {}
+
+  /// An extraction stage that failed validation: later stages still count on its complex.
+  void assume_extraction(const std::string& plugin) {
+    has_medial_ = true;
+    if (extraction_.empty()) extraction_ = plugin;
+  }
+
+  void check(const YAML::Node& node, const StageConfig& stage) {
+    const YAML::Node& where = node.IsMap() && node["plugin"] ? node["plugin"] : node;
+    if (stage.role == Role::Conditioning && has_medial_) late_conditioning(where, stage.plugin);
+    if (stage.role == Role::Extraction) {
+      if (!medial_input_.empty())
+        check_.error(where, fmt::format("`{}` (extraction) replaces the medial complex read from `medial_input:` "
+                                        "{}, which would be silently unused; remove one of the two",
+                                        stage.plugin, medial_input_.filename().string()));
+      assume_extraction(stage.plugin);
+    } else if (stage.role != Role::Conditioning && !has_medial_) {
+      check_.error(node, fmt::format("'{}' is a {} stage and needs a medial complex: put an extraction stage "
+                                     "before it, or give `medial_input: FILE.ma`",
+                                     stage.plugin, to_string(stage.role)));
+    }
+    shape_parts(node, stage);
+  }
+
+ private:
+  /// Conditioning changes the surface, not a complex already built or read: the two would
+  /// disagree (normalize after voronoi gave an axis at twice the scale).
+  void late_conditioning(const YAML::Node& where, const std::string& plugin) {
+    check_.error(where, extraction_.empty()
+                            ? fmt::format("`{}` (conditioning) comes after `medial_input:`: conditioning changes the "
+                                          "shape but not the medial complex read from {}, so the two would disagree; "
+                                          "remove `{}`, or drop `medial_input:` and extract the axis after it",
+                                          plugin, medial_input_.filename().string(), plugin)
+                            : fmt::format("`{}` (conditioning) comes after `{}` (extraction): conditioning changes "
+                                          "the shape but not the medial complex, so the two would disagree; move it "
+                                          "before the extraction",
+                                          plugin, extraction_));
+  }
+
+  void shape_parts(const YAML::Node& node, const StageConfig& stage) {
+    if (!stage.instance) return;
+    for (ShapePart part : stage.instance->needs())
+      if (!made_.count(part))
+        check_.error(node, fmt::format("'{}' needs the shape's {} with these parameters, and no stage before it "
+                                       "makes them: add one that does (e.g. `sample`) before it, or change its "
+                                       "parameters",
+                                       stage.plugin, to_string(part)));
+    for (ShapePart part : stage.instance->makes()) made_.insert(part);
+  }
+
+  fs::path medial_input_;
+  bool has_medial_;
+  std::string extraction_;  // the first extraction stage; empty while the complex is only medial_input's
+  std::set<ShapePart> made_;
+  detail::Diagnostics& check_;
+};
+
 void apply_overrides(YAML::Node& root, const Overrides& overrides, detail::Diagnostics& check) {
   for (const std::string& setting : overrides.settings) {
     const std::string where = fmt::format("{} {}", overrides.origin, setting);
@@ -400,9 +464,8 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
     check.error(stages ? stages : root, "`stages:` must be a non-empty list of stages");
   } else {
     Validator validator(check, registry);
+    StageOrder order(config.medial_input, check);
     std::set<std::string> ids;
-    bool has_medial = !config.medial_input.empty();
-    std::string medial_source;  // the first extraction stage; empty while the complex is only medial_input's
     for (const YAML::Node& node : stages) {
       if (node.IsMap() && node["enabled"]) {  // `enabled: false` (or --set STAGE.enabled=false) skips it
         const auto enabled = parse_bool(node["enabled"].Scalar());
@@ -415,34 +478,12 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
         // stages, so one mistake is not reported twice.
         if (node.IsMap() && node["plugin"] && node["plugin"].IsScalar())
           if (const RegisteredStage* s = registry.find(node["plugin"].Scalar()))
-            if (s->info().role == Role::Extraction) {
-              has_medial = true;
-              if (medial_source.empty()) medial_source = s->info().name;
-            }
+            if (s->info().role == Role::Extraction) order.assume_extraction(s->info().name);
         continue;
       }
       if (!ids.insert(stage->id).second)
         check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
-      if (stage->role == Role::Conditioning && has_medial) {
-        // Conditioning changes the surface, not a complex already built or read: the two would
-        // disagree (normalize after voronoi gave an axis at twice the scale).
-        check.error(node.IsMap() ? node["plugin"] : node,
-                    medial_source.empty()
-                        ? fmt::format("`{}` (conditioning) comes after `medial_input:`: conditioning changes the "
-                                      "shape but not the medial complex read from {}, so the two would disagree; "
-                                      "remove `{}`, or drop `medial_input:` and extract the axis after it",
-                                      stage->plugin, config.medial_input.filename().string(), stage->plugin)
-                        : fmt::format("`{}` (conditioning) comes after `{}` (extraction): conditioning changes the "
-                                      "shape but not the medial complex, so the two would disagree; move it before "
-                                      "the extraction",
-                                      stage->plugin, medial_source));
-      }
-      if (stage->role == Role::Extraction && medial_source.empty()) medial_source = stage->plugin;
-      if (stage->role == Role::Extraction) has_medial = true;
-      else if (stage->role != Role::Conditioning && !has_medial)
-        check.error(node, fmt::format("'{}' is a {} stage and needs a medial complex: put an extraction stage "
-                                      "before it, or give `medial_input: FILE.ma`",
-                                      stage->plugin, to_string(stage->role)));
+      order.check(node, *stage);
       config.stages.push_back(std::move(*stage));
     }
   }

@@ -16,6 +16,15 @@ EvaluationStage::~EvaluationStage() = default;
 
 void Stage::declare(ParamBinder&) {}
 void Stage::check_params() const {}
+std::vector<ShapePart> Stage::needs() const { return {}; }
+std::vector<ShapePart> Stage::makes() const { return {}; }
+
+std::string_view to_string(ShapePart part) {
+  switch (part) {
+    case ShapePart::Samples: return "samples";
+  }
+  return "?";
+}
 void Stage::check_scene(const Scene&) const {}
 
 void Stage::configure(const ParamSet& values) {

@@ -49,6 +49,7 @@ class SampleStage : public ConditioningStage {
   static StageInfo describe();
   void declare(ParamBinder& p) override;
   void condition(Shape& shape, Context& ctx) override;
+  std::vector<ShapePart> makes() const override { return {ShapePart::Samples}; }
 
  protected:
   void check_scene(const Scene& scene) const override;

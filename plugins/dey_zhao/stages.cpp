@@ -61,6 +61,11 @@ void DeyZhaoStage::check_params() const {
 
 void DeyZhaoStage::check_scene(const Scene& scene) const { check(scene.shape); }
 
+std::vector<ShapePart> DeyZhaoStage::needs() const {
+  if (points_ == PointSource::Samples) return {ShapePart::Samples};
+  return {};
+}
+
 bool DeyZhaoStage::use_samples(const Shape& shape) const {
   return points_ == PointSource::Samples || (points_ == PointSource::Auto && !shape.samples.empty());
 }

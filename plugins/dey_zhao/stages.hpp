@@ -17,6 +17,7 @@ class DeyZhaoStage : public ExtractionStage {
   void declare(ParamBinder& p) override;
   void check_params() const override;
   MedialComplex extract(const Shape& shape, Context& ctx) override;
+  std::vector<ShapePart> needs() const override;
 
  protected:
   void check_scene(const Scene& scene) const override;

@@ -193,6 +193,11 @@ std::shared_ptr<const VmasInput> VmasStage::make_input(const Shape& shape, Surfa
                                   : VmasInput::from_samples(shape.samples, options);
 }
 
+std::vector<ShapePart> VmasStage::needs() const {
+  if (input_ == Surface::Samples) return {ShapePart::Samples};
+  return {};
+}
+
 void VmasStage::check_scene(const Scene& scene) const {
   const Shape& shape = scene.shape;
   if (use_mesh(shape, input_)) {

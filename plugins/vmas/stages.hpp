@@ -30,6 +30,7 @@ class VmasStage : public ExtractionStage {
   void declare(ParamBinder& p) override;
   void check_params() const override;
   MedialComplex extract(const Shape& shape, Context& ctx) override;
+  std::vector<ShapePart> needs() const override;
 
   /// The solver and input options the parameters set.
   const VmasOptions& solver_options() const { return options_; }

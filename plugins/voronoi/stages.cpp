@@ -25,6 +25,11 @@ void VoronoiStage::declare(ParamBinder& p) {
 
 void VoronoiStage::check_scene(const Scene& scene) const { check(scene.shape); }
 
+std::vector<ShapePart> VoronoiStage::needs() const {
+  if (points_ == Points::Samples) return {ShapePart::Samples};
+  return {};
+}
+
 void VoronoiStage::check(const Shape& shape) const {
   if (points_ == Points::Samples) {
     if (shape.samples.empty())

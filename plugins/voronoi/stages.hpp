@@ -16,6 +16,7 @@ class VoronoiStage : public ExtractionStage {
   static StageInfo describe();
   void declare(ParamBinder& p) override;
   MedialComplex extract(const Shape& shape, Context& ctx) override;
+  std::vector<ShapePart> needs() const override;
 
  protected:
   void check_scene(const Scene& scene) const override;

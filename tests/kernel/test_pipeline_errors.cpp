@@ -270,6 +270,28 @@ TEST_CASE("a stage's own parameter check runs at validation and points at its pa
                {5, 13, {"'test_radius_field'", "must name the field"}});
 }
 
+TEST_CASE("a stage that needs samples no earlier stage makes is refused at validation", "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_shape_parts");
+  // Without the check `validate` passed and `run` refused at once (voronoi with points: samples).
+  check_single(dir, with_input("stages:\n  - plugin: test_centroid\n    params: {points: samples}\n"),
+               {3, 5, {"'test_centroid' needs the shape's samples", "add one that does (e.g. `sample`) before it"}});
+  const auto made_before = medax::test::write_text(
+      dir / "made_before.yaml", with_input("stages:\n  - plugin: test_scale\n    params: {sample: true}\n"
+                                           "  - plugin: test_centroid\n    params: {points: samples}\n"));
+  CHECK_NOTHROW(load_pipeline(made_before, medax::test::good_registry()));
+  CHECK_FALSE(pipeline_errors(dir, with_input("stages:\n  - plugin: test_centroid\n    params: {points: samples}\n"
+                                              "  - plugin: test_scale\n    params: {sample: true}\n"))
+                  .empty());
+}
+
+TEST_CASE("`medial_input:` and an extraction stage together are refused (the file would go unused)", "[pipeline]") {
+  const auto dir = scratch_dir("pipeline_medial_input_and_extraction");
+  medax::test::write_text(dir / "given.ma", "1 0 0\nv 0.5 0.5 0.5 0.5\n");
+  check_single(dir, with_input("medial_input: given.ma\nstages:\n  - plugin: test_centroid\n"),
+               {4, 13, {"`test_centroid` (extraction) replaces the medial complex read from `medial_input:`",
+                        "given.ma", "remove one of the two"}});
+}
+
 TEST_CASE("a conditioning stage after the medial complex exists is a role-order error at its plugin",
           "[pipeline]") {
   const auto dir = scratch_dir("pipeline_role_order");

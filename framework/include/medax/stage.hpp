@@ -10,6 +10,7 @@
 #include <medax/surface.hpp>
 
 #include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,11 @@ struct StageInfo {
   Role role = Role::Extraction;  ///< filled in by the registrar from the interface
 };
 
+/// A part of the shape that some stages need and others make (a mesh is what an input file
+/// gives; samples come from a stage such as `sample`).
+enum class ShapePart { Samples };
+std::string_view to_string(ShapePart part);
+
 class Stage {
  public:
   virtual ~Stage();
@@ -53,6 +59,11 @@ class Stage {
   /// other): called when the pipeline is validated, before anything runs. Throw
   /// std::invalid_argument saying what to do. Default: nothing to check.
   virtual void check_params() const;
+  /// The parts of the shape this stage needs with its parameters, and those it makes for later
+  /// stages, known without data: validation checks that the input or an earlier stage makes
+  /// each need, so `medax validate` refuses what `run` would refuse at once. Default: none.
+  virtual std::vector<ShapePart> needs() const;
+  virtual std::vector<ShapePart> makes() const;
   /// Checks the scene before any work: first the role's own needs (a medial complex for all but
   /// conditioning and extraction), then the stage's check_scene(). Throws std::invalid_argument.
   void prepare(const Scene& scene) const;

@@ -18,16 +18,25 @@ class TestScale : public ConditioningStage {
   static StageInfo describe() {
     return {"test_scale", "Scale the shape about the origin (kernel test stage)", ""};
   }
-  void declare(ParamBinder& p) override { p.add("factor", factor_, "scale factor").range(0.001, 1000); }
+  void declare(ParamBinder& p) override {
+    p.add("factor", factor_, "scale factor").range(0.001, 1000);
+    p.add("sample", sample_, "then take the vertices as the shape's samples");
+  }
   void condition(Shape& shape, Context&) override {
     const double f = factor_;
     for (Vec3& v : shape.mesh.vertices) v *= f;
     for (Vec3& p : shape.samples.points) p *= f;
     shape.to_input = shape.to_input.after(Similarity{1.0 / f, Vec3::Zero()});
+    if (sample_) shape.samples.points = shape.mesh.vertices;
+  }
+  std::vector<ShapePart> makes() const override {
+    if (sample_) return {ShapePart::Samples};
+    return {};
   }
 
  private:
   double factor_ = 1.0;
+  bool sample_ = false;
 };
 
 /// One medial vertex at the vertex centroid, radius the mean vertex distance to it.
@@ -49,7 +58,22 @@ class TestCentroid : public ExtractionStage {
   static StageInfo describe() {
     return {"test_centroid", "One sphere at the vertex centroid (kernel test stage)", ""};
   }
-  MedialComplex extract(const Shape& shape, Context&) override { return centroid_complex(shape); }
+  void declare(ParamBinder& p) override {
+    p.add("points", points_, {"vertices", "samples"}, "whose centroid: the mesh vertices or the samples");
+  }
+  MedialComplex extract(const Shape& shape, Context&) override {
+    if (points_ == "vertices") return centroid_complex(shape);
+    Shape of_samples;
+    of_samples.mesh.vertices = shape.samples.points;
+    return centroid_complex(of_samples);
+  }
+  std::vector<ShapePart> needs() const override {
+    if (points_ == "samples") return {ShapePart::Samples};
+    return {};
+  }
+
+ private:
+  std::string points_ = "vertices";
 };
 
 /// Extraction that calls a significance stage given as its `oracle` parameter.

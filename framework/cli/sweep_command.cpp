@@ -30,8 +30,10 @@ std::optional<Experiment> load_experiment(const RunArgs& args, const Registry& r
     if (args.timeout >= 0) config.limits.timeout_seconds = args.timeout;
     if (args.memory_mib >= 0) config.limits.memory_mib = args.memory_mib;
     jobs = expand_sweep(config);
-    for (SweepJob& job : jobs)  // --set applies to every job, before the swept values
+    for (SweepJob& job : jobs) {  // --set applies to every job, before the swept values
       job.settings.insert(job.settings.begin(), args.settings.begin(), args.settings.end());
+      job.from_command_line = args.settings.size();
+    }
     validate_sweep(config, jobs, registry);
   } catch (const PipelineError& e) {
     for (const Diagnostic& d : e.diagnostics()) fmt::print(stderr, "{}\n", d.format());

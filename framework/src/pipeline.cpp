@@ -314,8 +314,10 @@ class StageOrder {
 };
 
 void apply_overrides(YAML::Node& root, const Overrides& overrides, detail::Diagnostics& check) {
-  for (const std::string& setting : overrides.settings) {
-    const std::string where = fmt::format("{} {}", overrides.origin, setting);
+  for (std::size_t i = 0; i < overrides.settings.size(); ++i) {
+    const std::string& setting = overrides.settings[i];
+    const std::string where =
+        fmt::format("{} {}", i < overrides.from_command_line ? "--set" : overrides.origin, setting);
     const auto eq = setting.find('=');
     const auto dot = setting.find('.');
     if (eq == std::string::npos || dot == std::string::npos || dot > eq) {

@@ -412,7 +412,8 @@ void validate_sweep(const SweepConfig& config, std::vector<SweepJob>& jobs, cons
     try {
       // The resolved YAML holds nothing of the run folder: its hash is the job's configuration.
       job.config_hash = config_hash(resolved_yaml(load_pipeline(config.file, registry,
-                                                                Overrides{job.input, job.settings, "sweep"})));
+                                                                Overrides{job.input, job.settings, "sweep",
+                                                                          job.from_command_line})));
     } catch (const PipelineError& e) {
       for (const Diagnostic& d : e.diagnostics())
         if (seen.insert(d.format()).second) all.push_back(d);

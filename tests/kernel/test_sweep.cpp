@@ -480,3 +480,17 @@ TEST_CASE("an unknown or malformed sweep variable is reported with the file and 
   CHECK(jobs.at(0).settings == std::vector<std::string>{"scale.factor=3"});
   CHECK(jobs.at(0).name == "0001-sphere-factor=3");
 }
+
+TEST_CASE("a bad --set on an experiment is named as --set, a bad swept value as sweep", "[sweep]") {
+  const fs::path dir = scratch_dir("sweep_set_origin");
+  const fs::path file = write_text(dir / "sweep.yaml", "input: " + data_file("cube.off") +
+                                                           "\nsweep:\n  scale.factor: [1, -5]\n"
+                                                           "stages:\n  - {plugin: test_scale, id: scale}\n"
+                                                           "  - plugin: test_centroid\n");
+  const auto r = run_medax("validate '" + file.string() + "' --set test_centroid.points=nowhere", kPlugins, dir);
+  INFO(r.out << r.err);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--set test_centroid.points=nowhere: error"));
+  CHECK_THAT(r.err, !Catch::Contains("sweep test_centroid.points"));
+  CHECK_THAT(r.err, Catch::Contains("sweep scale.factor=-5: error"));
+}

@@ -63,6 +63,7 @@ struct Overrides {
   /// plugin (its params are then reset to the new plugin's defaults).
   std::vector<std::string> settings;
   std::string origin = "--set";      ///< how diagnostics name a setting ("--set", "sweep")
+  std::size_t from_command_line = 0; ///< the first this many settings are the command line's --set
 };
 
 /// Reads and validates a pipeline. Throws PipelineError with every problem found.

@@ -60,6 +60,7 @@ struct SweepJob {
   std::filesystem::path input;
   std::vector<std::pair<std::string, std::string>> assignment;  ///< axis key -> shown value
   std::vector<std::string> settings;                            ///< "KEY=VALUE" for --set
+  std::size_t from_command_line = 0;  ///< the first this many settings are the command line's --set
   /// Hash of the job's resolved configuration (the pipeline with its input and settings, every
   /// default filled in); validate_sweep sets it. A finished job with another hash runs again.
   std::string config_hash;

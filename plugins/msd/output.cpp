@@ -225,7 +225,7 @@ void write_summary_json(std::ostream& out, const Summary& s) {
       {"sites_added", additions(r.additions)},
       {"radius_rule", s.radius_rule},
       {"seconds", {{"total", s.seconds_total}, {"tetrahedralisation", r.seconds_tetrahedralisation},
-                   {"final_fit", r.seconds_final_fit}, {"reconstruction", s.seconds_reconstruction},
+                   {"final_fit", r.seconds_final_fit},
                    {"phases", phase_times(r.log)}}},
   };
   out << j.dump(2) << '\n';

@@ -62,7 +62,7 @@ struct Summary {
   double covered_area = 0;      ///< −E_cov
   double covered_vertices = 0;  ///< fraction of S's vertices covered
   const OptimisationResult* result = nullptr;
-  double seconds_total = 0, seconds_reconstruction = 0;
+  double seconds_total = 0;
   std::string radius_rule;
 };
 /// msd.json: counts, coverage, compression ratio (3·#v_in + #t_in)/(N_c + N_d), per-phase times

@@ -46,7 +46,7 @@ void MsdStage::declare(ParamBinder& p) {
   declare_construction(p);
   p.add("reconstruction", reconstruction_, {{"union", ReconstructionMode::Union}, {"none", ReconstructionMode::None}},
         "Ŝ as the CGAL corefinement union of the primitive meshes (published for evaluation, written as "
-        "<id>_reconstruction.off), or not built");
+        "<id>_reconstruction.off; experimental: CGAL 5.5 crashed on hand.obj), or not built");
   p.add("write_primitives", write_primitives_, "write every primitive into <id>_primitives.ply");
 }
 
@@ -158,15 +158,16 @@ void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& resul
   if (write_primitives_)
     ctx.write_output(ctx.stage_id() + "_primitives.ply",
                      [&](std::ostream& out) { write_primitives_ply(out, best.primitives, shape.to_input); });
+  summary.seconds_total = seconds_total;
+  ctx.write_output(ctx.stage_id() + "_msd.json", [&](std::ostream& out) { write_summary_json(out, summary); });
   if (reconstruction_ == ReconstructionMode::Union) {
     const auto start = Clock::now();
     Reconstruction union_mesh = reconstruct_union(best.primitives, shape.to_input);
-    summary.seconds_reconstruction = seconds_since(start);
     for (const std::string& skipped : union_mesh.skipped) ctx.warn("reconstruction: " + skipped);
+    ctx.info(fmt::format("reconstruction: union of {} primitives, {} faces, {:.3f} s", union_mesh.merged,
+                         union_mesh.surface.faces.size(), seconds_since(start)));
     ctx.publish(kReconstruction, std::move(union_mesh));
   }
-  summary.seconds_total = seconds_total + summary.seconds_reconstruction;
-  ctx.write_output(ctx.stage_id() + "_msd.json", [&](std::ostream& out) { write_summary_json(out, summary); });
   const Counts& c = summary.counts;
   ctx.info(fmt::format("MSD: {} vertices, {} unique edges, {} triangles (N_d {}, N_c {}), coverage {:.4f} of the "
                        "area, {} failed primitives",

@@ -29,7 +29,7 @@ class MsdStage : public SimplificationStage {
   void write_outputs(const Shape& shape, const OptimisationResult& result, double seconds_total, Context& ctx);
 
   OptimisationOptions options_;
-  ReconstructionMode reconstruction_ = ReconstructionMode::Union;
+  ReconstructionMode reconstruction_ = ReconstructionMode::None;
   bool write_primitives_ = true;
 };
 

@@ -47,6 +47,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   params.set("max_iterations", 10LL);
   params.set("search_sphere_vertices", 100LL);
   params.set("sphere_vertices", 200LL);
+  params.set("reconstruction", std::string("union"));
   stage.configure(params);
   stage.set_id("msd");
   RecordingContext ctx;

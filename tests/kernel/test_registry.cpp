@@ -74,8 +74,9 @@ TEST_CASE("registry loads every stage of the good package with its package info"
   CHECK(scale->package->name == "kernel_test");
   CHECK(scale->package->version == "1.2.3");
   CHECK(scale->package->file == plugin_dir("good") / "libmedax_kernel_test_good.so");
-  REQUIRE(scale->info().params.size() == 1);
+  REQUIRE(scale->info().params.size() == 2);
   CHECK(scale->info().params[0].name == "factor");
+  CHECK(scale->info().params[1].name == "sample");
   CHECK(registry.find("test_centroid")->info().role == Role::Extraction);
   CHECK(registry.find("test_count")->info().role == Role::Evaluation);
   CHECK(registry.find("no_such_stage") == nullptr);

@@ -12,6 +12,7 @@
 #include <medax/plugin.hpp>
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
+#include <capturing_context.hpp>
 #include <test_paths.hpp>
 
 #include <Eigen/Geometry>
@@ -205,21 +206,6 @@ TEST_CASE("reconstruction: options: uniform surface samples, seeding, point clou
   }
 }
 
-namespace {
-/// A context that keeps the extra outputs in memory.
-class CapturingContext : public BasicContext {
- public:
-  std::map<std::string, std::string> files;
-  std::filesystem::path write_output(const std::string& name,
-                                     const std::function<void(std::ostream&)>& body) override {
-    std::ostringstream out;
-    body(out);
-    files[name] = out.str();
-    return name;
-  }
-};
-}  // namespace
-
 TEST_CASE("reconstruction: export_envelope writes the boundary points in the input's frame", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 3);
@@ -230,7 +216,7 @@ TEST_CASE("reconstruction: export_envelope writes the boundary points in the inp
   params.set("resolution", 30LL);
   stage.configure(params);
   stage.set_id("recon");
-  CapturingContext ctx;
+  test::CapturingContext ctx;
   const Metrics m = stage.evaluate(shape, one_sphere(0.5), ctx);
   REQUIRE(ctx.files.count("recon_envelope.ply") == 1);
   std::istringstream in(ctx.files["recon_envelope.ply"]);

@@ -5,6 +5,7 @@
 
 #include <medax/io.hpp>
 
+#include "../support/capturing_context.hpp"
 #include "../support/test_paths.hpp"
 
 #include <catch2/catch.hpp>
@@ -15,24 +16,6 @@
 
 using namespace medax;
 using namespace medax::msd;
-
-namespace {
-
-/// A context that keeps the files a stage writes.
-class RecordingContext : public BasicContext {
- public:
-  RecordingContext() : BasicContext(0, false, "msd") {}
-  std::filesystem::path write_output(const std::string& name,
-                                     const std::function<void(std::ostream&)>& body) override {
-    std::ostringstream out;
-    body(out);
-    files[name] = out.str();
-    return name;
-  }
-  std::map<std::string, std::string> files;
-};
-
-}  // namespace
 
 TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are written, Ŝ is published") {
   Scene scene;
@@ -50,7 +33,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   params.set("reconstruction", std::string("union"));
   stage.configure(params);
   stage.set_id("msd");
-  RecordingContext ctx;
+  test::CapturingContext ctx(0, false, "msd");
   stage.prepare(scene);
   stage.run(scene, ctx);
 

@@ -314,13 +314,13 @@ PlyHeader read_ply_header(const fs::path& path, const std::string& text) {
   for (;;) {
     if (!lines.next(t)) fail(path, "the PLY header has no 'end_header' line");
     const std::string_view keyword = t[0];
-    if (keyword == "end_header") break;
-    // CGAL takes the format from line 2 only: a format elsewhere would make it read the body
-    // differently from the checks here.
+    // CGAL takes line 2 as the format whatever its keyword (even 'end_header'), and the format
+    // from line 2 only: anything else would make it read the file differently from the checks here.
     if ((lines.line() == 2) != (keyword == "format"))
       fail(path, fmt::format("line {}: line 2 and only line 2 is 'format ascii|binary_little_endian|"
                              "binary_big_endian 1.0'",
                              lines.line()));
+    if (keyword == "end_header") break;
     if (keyword == "format") {
       header.ascii = t.size() == 3 && t[1] == "ascii";
       header.big_endian = t.size() == 3 && t[1] == "binary_big_endian";

@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace medax::cli {
 
 /// The exit code of a failed run: 128 + the signal when the user interrupted it, else 1.
@@ -26,6 +30,9 @@ struct RunArgs {
   double timeout = -1;        ///< per-job seconds for sweeps; < 0: from the file
   double memory_mib = -1;     ///< per-job MiB for sweeps; < 0: from the file
 };
+
+/// Registers `run`'s own options (run_options.cpp) into `args`.
+void add_run_options(CLI::App& run, RunArgs& args);
 
 struct BenchArgs {
   std::filesystem::path pipeline;

@@ -1,5 +1,6 @@
 // medax: run, validate and inspect medial-axis pipelines.
 #include "commands.hpp"
+#include "view_command.hpp"
 
 #include <medax/kernel/registry.hpp>
 #include <medax/version.hpp>
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "Run a pipeline into a run folder");
   add_pipeline_options(run);
   medax::cli::add_run_options(*run, args);
+  bool view_after_run = false;
+  run->add_flag("--view", view_after_run, "Write the run's viewer page when it ends and open it (`medax view`)");
 
   medax::cli::BenchArgs bench_args;
   auto* bench = app.add_subcommand("bench", "Time a pipeline: warm-up runs, then min and median per stage");
@@ -54,6 +57,11 @@ int main(int argc, char** argv) {
   bench->add_option("--set,-s", bench_args.settings, "Override a parameter: STAGE.PARAM=VALUE");
   bench->add_option("--warmup", bench_args.warmup, "Untimed runs first")->check(CLI::NonNegativeNumber);
   bench->add_option("--repeat", bench_args.repeat, "Timed runs")->check(CLI::PositiveNumber);
+
+  medax::cli::ViewArgs view_args;
+  auto* view = medax::cli::add_view_command(app, view_args);
+  medax::cli::SnapshotArgs snapshot_args;
+  auto* snapshot = medax::cli::add_snapshot_command(app, snapshot_args);
 
   try {
     app.parse(argc, argv);
@@ -72,7 +80,10 @@ int main(int argc, char** argv) {
     if (describe->parsed()) return medax::cli::describe(name, markdown);
     if (validate->parsed()) return medax::cli::validate(args);
     if (bench->parsed()) return medax::cli::bench(bench_args);
-    return medax::cli::run(args);
+    if (view->parsed()) return medax::cli::view(view_args);
+    if (snapshot->parsed()) return medax::cli::snapshot(snapshot_args);
+    const int code = medax::cli::run(args);
+    return code == 0 && view_after_run ? medax::cli::view_finished_run(args) : code;
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "error: out of memory (std::bad_alloc); try a smaller input or raise the memory limit\n");
   } catch (const std::exception& e) {

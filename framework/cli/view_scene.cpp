@@ -1,0 +1,240 @@
+#include "view_scene.hpp"
+
+#include "view_ply.hpp"
+
+#include <medax/io.hpp>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <unordered_set>
+
+namespace medax::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::set<std::string> kGeometryColumns{"x", "y", "z", "radius", "vertex1", "vertex2"};
+
+std::vector<float> as_floats(const std::vector<double>& values) {
+  std::vector<float> out(values.size());
+  std::transform(values.begin(), values.end(), out.begin(), [](double v) {
+    return std::isfinite(v) ? static_cast<float>(v) : std::numeric_limits<float>::quiet_NaN();
+  });
+  return out;
+}
+
+const std::vector<double>& column(const PlyTable& table, const std::string& name, const fs::path& file) {
+  const PlyProperty* p = table.find(name);
+  if (!p) throw std::runtime_error(fmt::format("{}: element '{}' has no '{}' property", file.string(), table.name, name));
+  return p->values;
+}
+
+/// Edges bounding no triangle, as vertex pairs, and their rows in the edge list.
+void keep_curves(const std::vector<std::uint32_t>& edges, ViewScene& scene, std::vector<std::size_t>& rows) {
+  const auto key = [](std::uint64_t a, std::uint64_t b) { return a < b ? a << 32 | b : b << 32 | a; };
+  std::unordered_set<std::uint64_t> in_triangle;
+  const auto& t = scene.triangles;
+  for (std::size_t k = 0; k + 2 < t.size(); k += 3)
+    for (int c = 0; c < 3; ++c) in_triangle.insert(key(t[k + c], t[k + (c + 1) % 3]));
+  for (std::size_t e = 0; 2 * e + 1 < edges.size(); ++e) {
+    if (in_triangle.count(key(edges[2 * e], edges[2 * e + 1]))) continue;
+    scene.curves.insert(scene.curves.end(), {edges[2 * e], edges[2 * e + 1]});
+    rows.push_back(e);
+  }
+}
+
+/// Every property of `table` but the geometry as a field of `element`, taken at `rows`.
+void add_fields(const PlyTable& table, const std::string& element, const std::vector<std::size_t>& rows,
+                ViewScene& scene) {
+  for (const PlyProperty& p : table.properties) {
+    if (kGeometryColumns.count(p.name) && p.name != "radius") continue;
+    ViewField field{p.name, element, p.integer, {}};
+    field.values.reserve(rows.size());
+    for (std::size_t row : rows) field.values.push_back(static_cast<float>(p.values[row]));
+    scene.fields.push_back(std::move(field));
+  }
+}
+
+std::vector<std::size_t> all_rows(std::size_t count) {
+  std::vector<std::size_t> rows(count);
+  for (std::size_t i = 0; i < count; ++i) rows[i] = i;
+  return rows;
+}
+
+void read_medial_ply(const fs::path& file, ViewScene& scene) {
+  const auto tables = read_ply_tables(file);
+  const auto vertex = tables.find("vertex");
+  if (vertex == tables.end()) throw std::runtime_error(fmt::format("{}: no vertex element", file.string()));
+  const PlyTable& v = vertex->second;
+  const auto &x = column(v, "x", file), &y = column(v, "y", file), &z = column(v, "z", file);
+  for (std::size_t i = 0; i < v.rows; ++i) scene.positions.insert(scene.positions.end(), {float(x[i]), float(y[i]), float(z[i])});
+  scene.radii = as_floats(column(v, "radius", file));
+  add_fields(v, "vertex", all_rows(v.rows), scene);
+  if (const auto face = tables.find("face"); face != tables.end()) {
+    scene.triangles = face->second.triangles;
+    add_fields(face->second, "face", face->second.triangle_row, scene);
+  }
+  if (const auto edge = tables.find("edge"); edge != tables.end()) {
+    const PlyTable& e = edge->second;
+    const auto &a = column(e, "vertex1", file), &b = column(e, "vertex2", file);
+    std::vector<std::uint32_t> pairs;
+    for (std::size_t i = 0; i < e.rows; ++i) pairs.insert(pairs.end(), {std::uint32_t(a[i]), std::uint32_t(b[i])});
+    std::vector<std::size_t> rows;
+    keep_curves(pairs, scene, rows);
+    add_fields(e, "edge", rows, scene);
+  }
+}
+
+void read_medial_ma(const fs::path& file, ViewScene& scene) {
+  const MedialComplex mc = read_ma(file);
+  for (const Vec3& c : mc.centres) scene.positions.insert(scene.positions.end(), {float(c.x()), float(c.y()), float(c.z())});
+  scene.radii = as_floats(mc.radii);
+  scene.fields.push_back({"radius", "vertex", false, scene.radii});
+  for (const Tri& f : mc.faces) scene.triangles.insert(scene.triangles.end(), {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+  std::vector<std::uint32_t> pairs;
+  for (const Segment& e : mc.edges) pairs.insert(pairs.end(), {std::uint32_t(e[0]), std::uint32_t(e[1])});
+  std::vector<std::size_t> rows;
+  keep_curves(pairs, scene, rows);
+}
+
+void check_indices(const ViewScene& scene, const fs::path& file) {
+  const std::size_t n = scene.radii.size();
+  for (const auto* list : {&scene.triangles, &scene.curves})
+    for (std::uint32_t i : *list)
+      if (i >= n) throw std::runtime_error(fmt::format("{}: vertex index {} is not in 0..{}", file.string(), i, n - 1));
+}
+
+ViewSurface surface_layer(std::string id, std::string name, const SurfaceMesh& mesh) {
+  ViewSurface s;
+  s.id = std::move(id);
+  s.name = std::move(name);
+  for (const Vec3& p : mesh.vertices) s.positions.insert(s.positions.end(), {float(p.x()), float(p.y()), float(p.z())});
+  for (const Tri& f : mesh.faces) s.triangles.insert(s.triangles.end(), {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+  return s;
+}
+
+/// A surface PLY a stage wrote (e.g. durix_segmentation.ply), with its vertex colours when it has them.
+ViewSurface ply_surface(const fs::path& file) {
+  const auto tables = read_ply_tables(file);
+  const auto vertex = tables.find("vertex"), face = tables.find("face");
+  if (vertex == tables.end() || face == tables.end() || face->second.triangles.empty())
+    throw std::runtime_error("it has no triangles");
+  const PlyTable& v = vertex->second;
+  ViewSurface s;
+  s.id = s.name = file.filename().string();
+  const auto &x = column(v, "x", file), &y = column(v, "y", file), &z = column(v, "z", file);
+  for (std::size_t i = 0; i < v.rows; ++i) s.positions.insert(s.positions.end(), {float(x[i]), float(y[i]), float(z[i])});
+  s.triangles = face->second.triangles;
+  for (std::uint32_t i : s.triangles)
+    if (i >= v.rows) throw std::runtime_error(fmt::format("vertex index {} is not in 0..{}", i, v.rows - 1));
+  const PlyProperty *r = v.find("red"), *g = v.find("green"), *b = v.find("blue");
+  if (r && g && b)
+    for (std::size_t i = 0; i < v.rows; ++i)
+      s.colours.insert(s.colours.end(), {std::uint8_t(r->values[i]), std::uint8_t(g->values[i]), std::uint8_t(b->values[i])});
+  return s;
+}
+
+/// The input mesh named by config.resolved.yaml's top-level `input:` (medax writes it on one
+/// line, unquoted or double-quoted), or empty.
+fs::path input_mesh(const fs::path& folder) {
+  std::ifstream in(folder / "config.resolved.yaml");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("input:", 0) != 0) continue;
+    std::string value = line.substr(6);
+    value.erase(0, value.find_first_not_of(" \t"));
+    value.erase(value.find_last_not_of(" \t\r") + 1);
+    if (value.size() >= 2 && (value.front() == '"' || value.front() == '\'')) value = value.substr(1, value.size() - 2);
+    return value;
+  }
+  return {};
+}
+
+void add_input_surface(const fs::path& folder, ViewScene& scene) {
+  const fs::path input = input_mesh(folder);
+  if (input.empty()) {
+    scene.notes.push_back(fmt::format("{} names no input mesh: the page shows no input surface",
+                                      (folder / "config.resolved.yaml").string()));
+    return;
+  }
+  try {
+    ViewSurface s = surface_layer("surface", "input surface", read_mesh(input));
+    s.visible = true;
+    scene.surfaces.push_back(std::move(s));
+  } catch (const std::exception& e) {
+    scene.notes.push_back(fmt::format("the input surface is not shown: {}", e.what()));
+  }
+}
+
+bool ends_with(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// The reconstruction (<id>_reconstruction.off) and every other surface file of the folder.
+void add_stage_surfaces(const fs::path& folder, const fs::path& medial_file, ViewScene& scene) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(folder)) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) {
+    const std::string ext = file.extension().string(), name = file.filename().string();
+    if (file == medial_file || file.stem() == "medial" || (ext != ".ply" && ext != ".off" && ext != ".obj")) continue;
+    try {
+      ViewSurface s = ext == ".ply" ? ply_surface(file) : surface_layer(name, name, read_mesh(file));
+      if (ends_with(file.stem().string(), "reconstruction")) {
+        s.id = "reconstruction";
+        s.name = "reconstruction (" + name + ")";
+        s.colour = "#e8903a";
+        s.opacity = 0.35;
+        s.visible = true;
+      }
+      scene.surfaces.push_back(std::move(s));
+    } catch (const std::exception& e) {
+      scene.notes.push_back(fmt::format("{} is not shown: {}", name, e.what()));
+    }
+  }
+}
+
+std::string run_title(const fs::path& folder, ViewScene& scene) {
+  std::ifstream in(folder / "run.json");
+  const nlohmann::json run = nlohmann::json::parse(in, nullptr, false);
+  std::string title = folder.filename().string();
+  if (run.is_discarded() || !run.is_object()) {
+    scene.notes.push_back(fmt::format("{} has no readable run.json: it may be an unfinished run", folder.string()));
+    return title;
+  }
+  if (run.value("status", "") != "ok")
+    scene.notes.push_back(fmt::format("the run did not finish ('{}'); the page shows what it wrote",
+                                      run.value("status", std::string("unknown"))));
+  return run.value("pipeline", std::string("run")) + ": " + title;
+}
+
+}  // namespace
+
+ViewScene read_view_scene(const fs::path& run_folder) {
+  const fs::path folder = fs::absolute(run_folder).lexically_normal();
+  if (!fs::is_directory(folder))
+    throw std::runtime_error(fmt::format("{} is not a folder; give a run folder (what `medax run` printed after "
+                                         "'results:')", run_folder.string()));
+  ViewScene scene;
+  fs::path medial_file = folder / "medial.ply";
+  if (!fs::exists(medial_file)) medial_file = folder / "medial.ma";
+  if (!fs::exists(medial_file))
+    throw std::runtime_error(fmt::format("{} holds no medial.ply or medial.ma: give a run folder whose pipeline "
+                                         "writes `outputs: medial: [ply]`", run_folder.string()));
+  scene.title = run_title(folder, scene);
+  if (medial_file.extension() == ".ply") read_medial_ply(medial_file, scene);
+  else read_medial_ma(medial_file, scene);
+  check_indices(scene, medial_file);
+  add_input_surface(folder, scene);
+  add_stage_surfaces(folder, medial_file, scene);
+  return scene;
+}
+
+}  // namespace medax::cli

@@ -1,0 +1,17 @@
+# Writes OUTPUT, a C++ file holding viewer.html, viewer.css and viewer.js of SOURCE as
+# medax::cli::viewer_assets::kHtml, kCss and kJs (see framework/cli/view_assets.hpp).
+set(body "// Generated from framework/viewer by embed.cmake: edit those files, not this one.\n")
+string(APPEND body "#include \"view_assets.hpp\"\n\nnamespace medax::cli::viewer_assets {\n\n")
+foreach(pair "kHtml;viewer.html" "kCss;viewer.css" "kJs;viewer.js")
+  list(GET pair 0 name)
+  list(GET pair 1 file)
+  file(READ ${SOURCE}/${file} text)
+  string(FIND "${text}" ")medax_viewer\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${file} holds the raw-string delimiter )medax_viewer\"")
+  endif()
+  string(APPEND body "extern const std::string_view ${name};\nconst std::string_view ${name} = R\"medax_viewer(${text})medax_viewer\";\n\n")
+endforeach()
+string(APPEND body "}  // namespace medax::cli::viewer_assets\n")
+file(WRITE ${OUTPUT}.tmp "${body}")
+file(RENAME ${OUTPUT}.tmp ${OUTPUT})

@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh smoke              each harness 30,000 executions from a fixed seed on its corpus,
 #                                      then every kept crasher (CI: the same inputs on every run)
 #   scripts/fuzz.sh campaign [N]       N executions per harness (default 1000000)
-#   scripts/fuzz.sh campaign N TARGET  one harness only (off obj ply_ascii ply_binary stl ma pipeline)
+#   scripts/fuzz.sh campaign N TARGET  one harness only (off obj ply_ascii ply_binary stl ma pipeline xyz)
 #
 # Builds into build-fuzz. Prints executions, coverage (cov/ft) and peak RSS per harness; a crash
 # is saved to build-fuzz/fuzz-findings/<target>/ and makes the script exit 1. Keep a fixed crasher
@@ -17,7 +17,7 @@ runs=${2:-1000000}
 only=${3:-}
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${MEDAX_FUZZ_BUILD:-$root/build-fuzz}
-targets=(off obj ply_ascii ply_binary stl ma pipeline)
+targets=(off obj ply_ascii ply_binary stl ma pipeline xyz)
 smoke_runs=${MEDAX_FUZZ_SMOKE_RUNS:-30000}
 
 die() { echo "fuzz.sh: $*" >&2; exit 2; }

@@ -1,5 +1,7 @@
 // Surface mesh I/O: ASCII OFF read here; OBJ, PLY and STL through CGAL's polygon-soup readers after
 // checks of their own; writers through CGAL.
+#include "io_text.hpp"
+
 #include <medax/io.hpp>
 
 #include <CGAL/IO/OBJ.h>
@@ -28,83 +30,18 @@ using Point = CGAL::Simple_cartesian<double>::Point_3;
 
 namespace {
 
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
+using detail::coordinate;
+using detail::fail;
+using detail::Lines;
+using detail::lower_extension;
+using detail::parse_integer;
+using detail::read_all;
 
 void require_mesh_extension(const fs::path& path) {
   const std::string ext = lower_extension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
-    throw IoError(fmt::format("{}: unsupported mesh format '{}' (use .off, .obj, .ply or .stl)",
-                              path.string(), ext));
-}
-
-[[noreturn]] void fail(const fs::path& path, const std::string& what) {
-  throw IoError(fmt::format("{}: {}", path.string(), what));
-}
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open file (check its permissions)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// Lines of a text split into whitespace-separated tokens, '#' comments removed, with line numbers.
-class Lines {
- public:
-  /// `hash_comments`: '#' starts a comment (OFF, OBJ); PLY has none, and CGAL reads a '#' as text.
-  explicit Lines(std::string_view text, bool hash_comments = true) : text_(text), hash_comments_(hash_comments) {}
-  /// Next line with at least one token; false at the end of the text.
-  bool next(std::vector<std::string_view>& tokens) {
-    while (pos_ < text_.size()) {
-      std::size_t end = text_.find('\n', pos_);
-      if (end == std::string_view::npos) end = text_.size();
-      std::string_view line = text_.substr(pos_, end - pos_);
-      pos_ = end + 1;
-      ++line_;
-      if (hash_comments_) line = line.substr(0, line.find('#'));
-      tokens.clear();
-      std::size_t i = 0;
-      while (i < line.size()) {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-        const std::size_t b = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-        if (i > b) tokens.push_back(line.substr(b, i - b));
-      }
-      if (!tokens.empty()) return true;
-    }
-    return false;
-  }
-  std::size_t line() const { return line_; }
-  std::size_t offset() const { return std::min(pos_, text_.size()); }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::size_t line_ = 0;
-  bool hash_comments_;
-};
-
-bool parse_integer(std::string_view token, long long& value) {
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  return ec == std::errc() && end == token.data() + token.size();
-}
-
-/// Parses a coordinate; the error names the element and the line.
-double coordinate(const fs::path& path, std::string_view token, std::size_t line, std::size_t vertex) {
-  const std::string s(token);
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || end != s.c_str() + s.size())
-    fail(path, fmt::format("line {}: vertex {}: '{}' is not a number", line, vertex, s));
-  if (!std::isfinite(v))
-    fail(path, fmt::format("line {}: vertex {} has the non-finite coordinate '{}' (fix or remove the vertex)",
-                           line, vertex, s));
-  return v;
+    throw IoError(fmt::format("{}: unsupported mesh format '{}' (use .off, .obj, .ply or .stl){}", path.string(),
+                              ext, ext == ".xyz" || ext == ".pts" ? "; .xyz and .pts files are point sets" : ""));
 }
 
 /// A declared element count that the file cannot hold: refused before anything is allocated.
@@ -436,11 +373,12 @@ void check_ply_binary_body(const fs::path& path, const std::string& text, const 
       }
 }
 
-void check_ply(const fs::path& path, const std::string& text) {
+PlyHeader check_ply(const fs::path& path, const std::string& text) {
   const PlyHeader header = read_ply_header(path, text);
   check_ply_counts(path, text, header);
   if (header.ascii) check_ply_ascii_body(path, text, header);
   else check_ply_binary_body(path, text, header);
+  return header;
 }
 
 /// Binary STL: the triangle count against the file size (50 bytes a triangle after 84).
@@ -475,6 +413,20 @@ void read_with_cgal(const fs::path& path, const std::string& ext, std::vector<Po
 }
 
 }  // namespace
+
+detail::PlyContents detail::check_ply_contents(const fs::path& path, const std::string& text) {
+  const PlyHeader header = check_ply(path, text);
+  PlyContents contents;
+  for (const PlyHeaderElement& e : header.elements) {
+    if (e.name == "face" || e.name == "tristrips") contents.faces += e.count;
+    if (e.name != "vertex") continue;
+    contents.vertices = e.count;
+    int found = 0;
+    for (const PlyProperty& p : e.properties) found += !p.count_size && (p.name == "nx" || p.name == "ny" || p.name == "nz");
+    contents.normals = found == 3;
+  }
+  return contents;
+}
 
 SurfaceMesh read_mesh(const fs::path& path) {
   require_mesh_extension(path);
@@ -515,7 +467,7 @@ SurfaceMesh read_mesh(const fs::path& path) {
   }
   if (mesh.faces.empty())
     throw IoError(fmt::format("{}: {} vertices and no faces (points only, or truncated before the first face): "
-                              "medax needs a triangle surface",
+                              "medax needs a triangle surface here (`medax run` reads a file of points as a point set)",
                               path.string(), points.size()));
   return mesh;
 }

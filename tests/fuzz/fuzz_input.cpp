@@ -113,7 +113,7 @@ fs::path write_input(std::string_view target, std::string_view bytes) {
 }  // namespace
 
 const std::vector<std::string>& targets() {
-  static const std::vector<std::string> names{"off", "obj", "ply_ascii", "ply_binary", "stl", "ma", "pipeline"};
+  static const std::vector<std::string> names{"off", "obj", "ply_ascii", "ply_binary", "stl", "ma", "pipeline", "xyz"};
   return names;
 }
 
@@ -122,7 +122,8 @@ bool feed(std::string_view target, std::string_view bytes) {
   try {
     if (target == "ma") read_ma(file);
     else if (target == "pipeline") load_pipeline(file, fuzz_registry());
-    else read_mesh(file);
+    else if (target == "xyz") read_point_set(file);
+    else read_shape(file);  // a mesh, or for a file without faces a point set
     return true;
   } catch (const IoError&) {
     return false;

@@ -7,8 +7,9 @@
 
 namespace medax::fuzz {
 
-/// The fuzzed readers, by harness name: off, obj, ply_ascii, ply_binary, stl, ma, pipeline
-/// (the two PLY harnesses share the reader and differ by their seed corpus).
+/// The fuzzed readers, by harness name: off, obj, ply_ascii, ply_binary, stl (read_shape: the
+/// mesh reader, or the point-set reader for a file without faces), ma, pipeline, xyz (the
+/// point-set reader); the two PLY harnesses share the reader and differ by their seed corpus.
 const std::vector<std::string>& targets();
 
 /// Feeds `bytes` to the reader of `target`. Returns true when the input was read, false when

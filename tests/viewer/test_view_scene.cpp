@@ -1,0 +1,103 @@
+// What the viewer reads from a run folder (framework/cli/view_scene.cpp): the medial complex
+// with its fields, curves = edges bounding no triangle, the input surface, other surfaces.
+#include "view_scene.hpp"
+#include "viewer_fixture.hpp"
+
+#include <medax/io.hpp>
+
+#include <algorithm>
+#include <set>
+
+using namespace medax::test;
+using medax::cli::ViewField;
+using medax::cli::ViewScene;
+
+namespace {
+
+const ViewField* find_field(const ViewScene& scene, const std::string& element, const std::string& name) {
+  for (const ViewField& f : scene.fields)
+    if (f.element == element && f.name == name) return &f;
+  return nullptr;
+}
+
+void write_file(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
+
+}  // namespace
+
+TEST_CASE("the viewer's scene of a real run holds its medial complex, fields and input surface", "[viewer]") {
+  const ViewScene scene = medax::cli::read_view_scene(small_run());
+  const medax::MedialComplex mc = medax::read_ma(small_run() / "medial.ma");
+  REQUIRE(scene.radii.size() == mc.centres.size());
+  CHECK(scene.positions.size() == 3 * mc.centres.size());
+  for (std::size_t i = 0; i < mc.centres.size(); i += 97) {
+    CHECK(scene.radii[i] == Approx(mc.radii[i]).epsilon(1e-6));
+    CHECK(scene.positions[3 * i + 2] == Approx(mc.centres[i].z()).epsilon(1e-6));
+  }
+  CHECK(scene.triangles.size() == 3 * mc.faces.size());
+  // Curves: the edges of the .ma that bound no triangle, counted here independently.
+  std::set<std::pair<medax::Index, medax::Index>> in_faces;
+  for (const medax::Tri& f : mc.faces)
+    for (int c = 0; c < 3; ++c) in_faces.insert(std::minmax(f[c], f[(c + 1) % 3]));
+  const auto curves = std::count_if(mc.edges.begin(), mc.edges.end(),
+                                    [&](const medax::Segment& e) { return !in_faces.count(std::minmax(e[0], e[1])); });
+  CHECK(scene.curves.size() == 2 * static_cast<std::size_t>(curves));
+
+  const ViewField* radius = find_field(scene, "vertex", "radius");
+  REQUIRE(radius);
+  CHECK(!radius->label);
+  CHECK(radius->values.size() == mc.centres.size());
+  const ViewField* polygon = find_field(scene, "face", "polygon");  // voronoi's face label
+  REQUIRE(polygon);
+  CHECK(polygon->label);
+  CHECK(polygon->values.size() == mc.faces.size());
+
+  REQUIRE(!scene.surfaces.empty());
+  CHECK(scene.surfaces[0].id == "surface");
+  CHECK(scene.surfaces[0].positions.size() == 3 * 162);  // tests/data/ellipsoid.off
+  CHECK(scene.surfaces[0].triangles.size() == 3 * 320);
+  CHECK(scene.notes.empty());
+}
+
+TEST_CASE("the viewer fans polygons, keeps a face field per triangle and an edge field per curve", "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_ply");
+  write_file(dir / "medial.ply",
+             "ply\nformat ascii 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
+             "property double radius\nproperty int sheet\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
+             "property double strength\nelement face 1\nproperty list uchar int vertex_indices\nproperty double angle\n"
+             "end_header\n0 0 0 1 7\n1 0 0 1 7\n1 1 0 2 8\n0 1 0 2 8\n3 3 3 0.5 9\n0 1 0.25\n2 4 0.75\n4 0 1 2 3 1.5\n");
+  write_file(dir / "durix_segmentation.ply",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+             "property list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
+  const ViewScene scene = medax::cli::read_view_scene(dir);
+  CHECK(scene.triangles == std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
+  CHECK(scene.curves == std::vector<std::uint32_t>{2, 4});  // 0-1 bounds the quad
+  const ViewField* angle = find_field(scene, "face", "angle");
+  REQUIRE(angle);
+  CHECK(angle->values == std::vector<float>{1.5f, 1.5f});
+  const ViewField* strength = find_field(scene, "edge", "strength");
+  REQUIRE(strength);
+  CHECK(strength->values == std::vector<float>{0.75f});
+  const ViewField* sheet = find_field(scene, "vertex", "sheet");
+  REQUIRE(sheet);
+  CHECK(sheet->label);
+  CHECK(sheet->values == std::vector<float>{7, 7, 8, 8, 9});
+  // A stage's surface file is a layer of its own, with its colours.
+  REQUIRE(scene.surfaces.size() == 1);
+  CHECK(scene.surfaces[0].id == "durix_segmentation.ply");
+  CHECK(scene.surfaces[0].colours == std::vector<std::uint8_t>{255, 0, 0, 0, 255, 0, 0, 0, 255});
+  // No config.resolved.yaml and no run.json: said, not hidden.
+  CHECK(scene.notes.size() == 2);
+}
+
+TEST_CASE("the viewer refuses a folder without a medial complex and a binary PLY, saying what to do", "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_bad");
+  CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("holds no medial.ply or medial.ma"));
+  write_file(dir / "medial.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n");
+  CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("binary_little_endian PLY is not read"));
+  write_file(dir / "medial.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
+                                 "property double z\nproperty double radius\nend_header\n0 0 0 1\n");
+  CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("ends inside element 'vertex'"));
+}

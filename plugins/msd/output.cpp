@@ -2,10 +2,6 @@
 
 #include <medax/ply.hpp>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -83,99 +79,6 @@ void write_primitives_ply(std::ostream& out, const std::vector<Primitive>& primi
 
 namespace {
 
-// Exact predicates, rounded constructions: exact constructions made the union of a dozen
-// primitives take minutes; a union that fails on rounding is reported, not hidden.
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using CgalMesh = CGAL::Surface_mesh<Kernel::Point_3>;
-namespace PMP = CGAL::Polygon_mesh_processing;
-
-/// T_P as a CGAL mesh; false when it is not a closed 2-manifold (a face CGAL refuses).
-bool cgal_mesh(const SurfaceMesh& mesh, CgalMesh& result) {
-  std::vector<CgalMesh::Vertex_index> ids;
-  for (const Vec3& p : mesh.vertices) ids.push_back(result.add_vertex({p.x(), p.y(), p.z()}));
-  for (const Tri& f : mesh.faces)
-    if (result.add_face(ids[f[0]], ids[f[1]], ids[f[2]]) == CgalMesh::null_face()) return false;
-  return CGAL::is_closed(result);
-}
-
-/// Why a mesh cannot enter a corefinement (CGAL requires closed meshes without
-/// self-intersections), or empty.
-std::string unusable(const CgalMesh& mesh) {
-  if (!CGAL::is_closed(mesh)) return "not closed";
-  if (PMP::does_self_intersect(mesh)) return "self-intersecting";
-  return {};
-}
-
-SurfaceMesh to_surface(const CgalMesh& mesh) {
-  SurfaceMesh result;
-  std::map<CgalMesh::Vertex_index, Index> index;
-  for (auto v : mesh.vertices()) {
-    index[v] = static_cast<Index>(result.vertices.size());
-    const auto& p = mesh.point(v);
-    result.vertices.emplace_back(p.x(), p.y(), p.z());
-  }
-  for (auto f : mesh.faces()) {
-    Tri tri{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) tri[k++] = index[v];
-    result.faces.push_back(tri);
-  }
-  return result;
-}
-
-}  // namespace
-
-Reconstruction reconstruct_union(const std::vector<Primitive>& primitives, const Similarity& to_input) {
-  Reconstruction result;
-  result.to_input = to_input;
-  CgalMesh accumulated;
-  bool empty = true;
-  for (std::size_t id = 0; id < primitives.size(); ++id) {
-    if (!primitives[id].fitted) continue;
-    // Primitives clamped at ρmax put vertices exactly on the same faces of S, so neighbours share
-    // coplanar triangles; CGAL's coplanar path crashed on them with rounded constructions. A
-    // relative shrink of (id + 1)·1e-7 makes them distinct.
-    Primitive shrunk = primitives[id];
-    for (double& r : shrunk.radius) r *= 1 - 1e-7 * static_cast<double>(id + 1);
-    CgalMesh next;
-    std::string why = cgal_mesh(primitive_mesh(shrunk), next) ? unusable(next) : "not a closed 2-manifold";
-    if (!why.empty()) {
-      result.skipped.push_back(fmt::format("primitive {}: {}", id, why));
-      continue;
-    }
-    if (empty) {
-      accumulated = std::move(next);
-      empty = false;
-      ++result.merged;
-      continue;
-    }
-    CgalMesh united;
-    const bool ok = PMP::corefine_and_compute_union(accumulated, next, united);
-    // Rounded constructions can leave the union self-intersecting; it would poison the next step.
-    why = ok ? unusable(united) : "the corefinement union failed";
-    if (!why.empty()) {
-      result.skipped.push_back(fmt::format("primitive {}: {}", id, ok ? "the union became " + why : why));
-      continue;
-    }
-    accumulated = std::move(united);
-    ++result.merged;
-  }
-  result.surface = to_surface(accumulated);
-  return result;
-}
-
-void write_reconstruction_off(const Reconstruction& reconstruction, std::ostream& out) {
-  const SurfaceMesh& mesh = reconstruction.surface;
-  out << "OFF\n" << mesh.vertices.size() << ' ' << mesh.faces.size() << " 0\n";
-  for (const Vec3& v : mesh.vertices) {
-    const Vec3 p = reconstruction.to_input.apply(v);
-    out << fmt::format("{:.17g} {:.17g} {:.17g}\n", p.x(), p.y(), p.z());
-  }
-  for (const Tri& f : mesh.faces) out << fmt::format("3 {} {} {}\n", f[0], f[1], f[2]);
-}
-
-namespace {
-
 nlohmann::json phase_times(const std::vector<IterationLog>& log) {
   double projection = 0, construction = 0, fitting = 0, energy = 0;
   for (const IterationLog& it : log) {
@@ -224,8 +127,9 @@ void write_summary_json(std::ostream& out, const Summary& s) {
       {"delta", r.delta},
       {"sites_added", additions(r.additions)},
       {"radius_rule", s.radius_rule},
+      {"reconstruction", s.reconstruction},
       {"seconds", {{"total", s.seconds_total}, {"tetrahedralisation", r.seconds_tetrahedralisation},
-                   {"final_fit", r.seconds_final_fit},
+                   {"final_fit", r.seconds_final_fit}, {"reconstruction", s.seconds_reconstruction},
                    {"phases", phase_times(r.log)}}},
   };
   out << j.dump(2) << '\n';

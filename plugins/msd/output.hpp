@@ -1,11 +1,9 @@
 #pragma once
 // What the msd stage hands on (paper §4, Def. 4.2; notes §1, §4): the skeleton as the scene's
-// medial complex, every primitive in one PLY, the counts N_d and N_c, msd.json, and the
-// reconstruction Ŝ = ∪ T_P as one closed mesh published as typed scene data.
+// medial complex, every primitive in one PLY, the counts N_d and N_c and msd.json (Ŝ: reconstruction.hpp).
 #include "optimisation.hpp"
 
 #include <medax/medial_complex.hpp>
-#include <medax/scene_data.hpp>
 #include <medax/surface.hpp>
 
 #include <iosfwd>
@@ -36,25 +34,6 @@ Counts count_elements(const Diagram& diagram);
 /// element's index: vertices, then edges, then triangles).
 void write_primitives_ply(std::ostream& out, const std::vector<Primitive>& primitives, const Similarity& to_input);
 
-/// Ŝ: the union of the primitive meshes, in the working frame; `to_input` maps it back.
-struct Reconstruction {
-  SurfaceMesh surface;
-  Similarity to_input;
-  std::size_t merged = 0;             ///< primitives in the union
-  std::vector<std::string> skipped;   ///< "primitive 7: self-intersecting", ... (not in the union)
-};
-/// CGAL corefinement union (Polygon_mesh_processing::corefine_and_compute_union, exact predicates),
-/// one primitive at a time; a primitive that self-intersects or whose union fails is skipped
-/// and listed.
-Reconstruction reconstruct_union(const std::vector<Primitive>& primitives, const Similarity& to_input);
-
-/// Writes the surface as OFF in the input frame.
-void write_reconstruction_off(const Reconstruction& reconstruction, std::ostream& out);
-
-/// Ŝ for later stages (an evaluation stage measures it against the shape).
-inline const DataKey<Reconstruction> kReconstruction{"msd.reconstruction", "msd", "reconstruction.off",
-                                                     write_reconstruction_off};
-
 /// Everything msd.json reports.
 struct Summary {
   Counts counts;
@@ -63,6 +42,8 @@ struct Summary {
   double covered_vertices = 0;  ///< fraction of S's vertices covered
   const OptimisationResult* result = nullptr;
   double seconds_total = 0;
+  double seconds_reconstruction = 0;
+  std::string reconstruction;  ///< how Ŝ was built, or empty when it was not
   std::string radius_rule;
 };
 /// msd.json: counts, coverage, compression ratio (3·#v_in + #t_in)/(N_c + N_d), per-phase times

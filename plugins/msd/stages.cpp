@@ -3,6 +3,8 @@
 #include "medial_json.hpp"
 #include "output.hpp"
 
+#include <medax/representation_size.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,12 +14,13 @@
 namespace medax::msd {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = MsdStage::Clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 const char* kRadiusRule = "vertex radius = mean ρ of the vertex primitive (ρ0 when its fit failed)";
+const char* kCountRule = "MSD (Guo et al. 2024 §6): N_d = #v + #e + #f, N_c = Σ|V(T_P)| + 3·#v over fitted primitives";
 
 std::string iteration_line(const IterationLog& it) {
   const Energy& e = it.energy;
@@ -44,9 +47,12 @@ void MsdStage::declare(ParamBinder& p) {
   declare_optimisation(p);
   declare_fitting(p);
   declare_construction(p);
-  p.add("reconstruction", reconstruction_, {{"union", ReconstructionMode::Union}, {"none", ReconstructionMode::None}},
-        "Ŝ as the CGAL corefinement union of the primitive meshes (published for evaluation, written as "
-        "<id>_reconstruction.off; experimental: CGAL 5.5 crashed on hand.obj), or not built");
+  p.add("reconstruction", reconstruction_, {{"sdf", ReconstructionMode::Sdf}, {"none", ReconstructionMode::None}},
+        "Ŝ = ∪ T_P by a signed-distance grid meshed by OpenVDB (published for the evaluation stages, written as "
+        "<id>_reconstruction.off), or not built");
+  p.add("reconstruction_resolution", sdf_.resolution,
+        "voxels of Ŝ's grid across the longest side of the primitives' bounding box (paper: 256)")
+      .range(8, 4096);
   p.add("write_primitives", write_primitives_, "write every primitive into <id>_primitives.ply");
 }
 
@@ -139,10 +145,10 @@ void MsdStage::simplify(const Shape& shape, MedialComplex& medial, Context& ctx)
                        result.seconds_tetrahedralisation));
   ctx.info(fmt::format("final fit of {} primitives: {:.3f} s", result.best.primitives.size(), result.seconds_final_fit));
   medial = skeleton_complex(result.best);
-  write_outputs(shape, result, seconds_since(start), ctx);
+  write_outputs(shape, result, start, ctx);
 }
 
-void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& result, double seconds_total,
+void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& result, Clock::time_point start,
                              Context& ctx) {
   const Diagram& best = result.best;
   Summary summary;
@@ -158,21 +164,25 @@ void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& resul
   if (write_primitives_)
     ctx.write_output(ctx.stage_id() + "_primitives.ply",
                      [&](std::ostream& out) { write_primitives_ply(out, best.primitives, shape.to_input); });
-  summary.seconds_total = seconds_total;
-  ctx.write_output(ctx.stage_id() + "_msd.json", [&](std::ostream& out) { write_summary_json(out, summary); });
-  if (reconstruction_ == ReconstructionMode::Union) {
-    const auto start = Clock::now();
-    Reconstruction union_mesh = reconstruct_union(best.primitives, shape.to_input);
-    for (const std::string& skipped : union_mesh.skipped) ctx.warn("reconstruction: " + skipped);
-    ctx.info(fmt::format("reconstruction: union of {} primitives, {} faces, {:.3f} s", union_mesh.merged,
-                         union_mesh.surface.faces.size(), seconds_since(start)));
-    ctx.publish(kReconstruction, std::move(union_mesh));
-  }
+  if (reconstruction_ == ReconstructionMode::Sdf) publish_reconstruction(shape, best, summary, ctx);
   const Counts& c = summary.counts;
+  ctx.publish(kRepresentationSize, RepresentationSize{c.discrete, c.continuous, kCountRule});
+  summary.seconds_total = seconds_since(start);
+  ctx.write_output(ctx.stage_id() + "_msd.json", [&](std::ostream& out) { write_summary_json(out, summary); });
   ctx.info(fmt::format("MSD: {} vertices, {} unique edges, {} triangles (N_d {}, N_c {}), coverage {:.4f} of the "
                        "area, {} failed primitives",
                        c.vertices, c.edges, c.triangles, c.discrete, c.continuous, summary.covered_area,
                        c.failed_primitives));
+}
+
+void MsdStage::publish_reconstruction(const Shape& shape, const Diagram& best, Summary& summary, Context& ctx) const {
+  const auto start = Clock::now();
+  ReconstructedSurface rebuilt = reconstruct_sdf(best.primitives, shape.to_input, sdf_);
+  summary.seconds_reconstruction = seconds_since(start);
+  summary.reconstruction = rebuilt.method;
+  ctx.info(fmt::format("reconstruction Ŝ: {}; {} vertices, {} triangles, {:.3f} s", rebuilt.method,
+                       rebuilt.surface.vertices.size(), rebuilt.surface.faces.size(), summary.seconds_reconstruction));
+  ctx.publish(kReconstructedSurface, std::move(rebuilt));
 }
 
 StageInfo MsdMedialStage::describe() {

@@ -3,18 +3,22 @@
 // Medial Skeletal Diagram (a simplification: the skeleton replaces M), `msd_medial` reads M from
 // the authors' JSON format when the pipeline has no extraction stage.
 #include "optimisation.hpp"
+#include "output.hpp"
+#include "reconstruction.hpp"
 
 #include <medax/stage.hpp>
 
+#include <chrono>
 #include <string>
 
 namespace medax::msd {
 
-/// How Ŝ is built for the outputs.
-enum class ReconstructionMode { Union, None };
+/// Whether Ŝ is built (signed-distance grid) and published.
+enum class ReconstructionMode { Sdf, None };
 
 class MsdStage : public SimplificationStage {
  public:
+  using Clock = std::chrono::steady_clock;
   static StageInfo describe();
   void declare(ParamBinder& p) override;
   void simplify(const Shape& shape, MedialComplex& medial, Context& ctx) override;
@@ -26,10 +30,12 @@ class MsdStage : public SimplificationStage {
   void declare_optimisation(ParamBinder& p);
   void declare_fitting(ParamBinder& p);
   void declare_construction(ParamBinder& p);
-  void write_outputs(const Shape& shape, const OptimisationResult& result, double seconds_total, Context& ctx);
+  void write_outputs(const Shape& shape, const OptimisationResult& result, Clock::time_point start, Context& ctx);
+  void publish_reconstruction(const Shape& shape, const Diagram& best, Summary& summary, Context& ctx) const;
 
   OptimisationOptions options_;
-  ReconstructionMode reconstruction_ = ReconstructionMode::None;
+  ReconstructionMode reconstruction_ = ReconstructionMode::Sdf;
+  SdfOptions sdf_;
   bool write_primitives_ = true;
 };
 

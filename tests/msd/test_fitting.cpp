@@ -1,6 +1,7 @@
 // MSD primitive templates and local fitting (plugins/msd: primitive_template, fitting,
 // target_mesh) on analytic shapes: notes §7 items 4, 5, 7, 8.
 #include "fitting.hpp"
+#include "mesh_checks.hpp"
 
 #include <medax/io.hpp>
 #include <medax/testing/shapes.hpp>
@@ -10,11 +11,12 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
-#include <map>
 #include <random>
 
 using namespace medax;
 using namespace medax::msd;
+using medax::msd::checks::check_closed_manifold;
+using medax::msd::checks::winding;
 using medax::testing::make_box;
 using medax::testing::make_capsule;
 using medax::testing::make_sphere;
@@ -44,34 +46,6 @@ Vec3 closest_on_element(const SkeletonElement& e, const Vec3& p) {
   for (const Vec3& x : {on_segment(b, c, p), on_segment(c, a, p)})
     if ((x - p).norm() < (best - p).norm()) best = x;
   return best;
-}
-
-/// Closed, 2-manifold, consistently oriented, sphere topology.
-void check_closed_manifold(const std::vector<Tri>& faces, std::size_t vertices) {
-  std::map<std::pair<Index, Index>, int> directed;
-  for (const Tri& f : faces) {
-    REQUIRE(f[0] != f[1]);
-    REQUIRE(f[1] != f[2]);
-    REQUIRE(f[0] != f[2]);
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
-  }
-  std::size_t bad = 0;
-  for (const auto& [edge, count] : directed)
-    if (count != 1 || directed.count({edge.second, edge.first}) == 0) ++bad;
-  CHECK(bad == 0);
-  const std::size_t edges = directed.size() / 2;
-  CHECK(static_cast<long>(vertices) - static_cast<long>(edges) + static_cast<long>(faces.size()) == 2);
-}
-
-/// Generalized winding number of p with respect to a closed triangle mesh.
-double winding(const std::vector<Vec3>& v, const std::vector<Tri>& faces, const Vec3& p) {
-  double total = 0;
-  for (const Tri& f : faces) {
-    const Vec3 a = v[f[0]] - p, b = v[f[1]] - p, c = v[f[2]] - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    total += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
-  }
-  return total / (4 * M_PI);
 }
 
 /// Number of faces the ray o + s d (s > 0) crosses.

@@ -1,9 +1,11 @@
 // The msd stage end to end on tests/data/ellipsoid.off with its VMAS medial mesh
 // (tests/data/msd_ellipsoid_vmas.ma), and the msd_medial stage on a file in the authors' format.
+#include "mesh_checks.hpp"
 #include "output.hpp"
 #include "stages.hpp"
 
 #include <medax/io.hpp>
+#include <medax/representation_size.hpp>
 
 #include "../support/capturing_context.hpp"
 #include "../support/test_paths.hpp"
@@ -16,6 +18,7 @@
 
 using namespace medax;
 using namespace medax::msd;
+using medax::msd::checks::check_closed_manifold;
 
 TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are written, Ŝ is published") {
   Scene scene;
@@ -30,7 +33,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   params.set("max_iterations", 10LL);
   params.set("search_sphere_vertices", 100LL);
   params.set("sphere_vertices", 200LL);
-  params.set("reconstruction", std::string("union"));
+  params.set("reconstruction_resolution", 64LL);
   stage.configure(params);
   stage.set_id("msd");
   test::CapturingContext ctx(0, false, "msd");
@@ -50,10 +53,16 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   CHECK_THAT(ctx.files["msd_msd.json"], Catch::Contains("\"N_d\""));
   REQUIRE(ctx.files.count("msd_primitives.ply"));
   CHECK_THAT(ctx.files["msd_primitives.ply"], Catch::Contains("property int primitive"));
-  const Reconstruction* union_mesh = ctx.data().find(kReconstruction);
-  REQUIRE(union_mesh);
-  CHECK(union_mesh->merged > 0);
-  CHECK(union_mesh->surface.faces.size() > 100);
+  // Ŝ (on by default) and the MSD counts for the evaluation stages.
+  const ReconstructedSurface* rebuilt = ctx.data().find(kReconstructedSurface);
+  REQUIRE(rebuilt);
+  CHECK(rebuilt->surface.faces.size() > 100);
+  CHECK_THAT(rebuilt->method, Catch::Contains("64 voxels"));
+  check_closed_manifold(rebuilt->surface.faces, rebuilt->surface.vertices.size());
+  const RepresentationSize* size = ctx.data().find(kRepresentationSize);
+  REQUIRE(size);
+  CHECK(size->discrete == skeleton.num_vertices() + skeleton.edges.size() + skeleton.faces.size());
+  CHECK(size->continuous > 3 * skeleton.num_vertices());
 }
 
 TEST_CASE("msd_medial reads the authors' JSON into the scene in the working frame") {

@@ -18,6 +18,16 @@ inline int failed_run_exit_code(int signal) { return signal ? 128 + signal : 1; 
 /// False (after printing why) when PIPELINE is missing or a folder; exit 2 then.
 bool check_pipeline_file(const std::filesystem::path& pipeline);
 
+/// `run --backend slurm` options (docs/cluster.md).
+struct SlurmArgs {
+  std::string partition, time, memory;
+  int cpus = 0;
+  int max_parallel = 0;
+  bool no_wait = false;
+  int retries = 0;
+  double poll_seconds = 2;
+};
+
 struct RunArgs {
   std::filesystem::path pipeline;
   std::filesystem::path input;
@@ -29,6 +39,9 @@ struct RunArgs {
   int parallel_jobs = 1;      ///< -j for sweeps
   double timeout = -1;        ///< per-job seconds for sweeps; < 0: from the file
   double memory_mib = -1;     ///< per-job MiB for sweeps; < 0: from the file
+  std::string backend = "local";  ///< --backend: where a sweep's jobs run (local, slurm)
+  SlurmArgs slurm;                ///< --backend slurm's options
+  std::filesystem::path slurm_task;  ///< --slurm-task TASKS: run as one task of a sweep's Slurm array
 };
 
 /// Registers `run`'s own options (run_options.cpp) into `args`.

@@ -6,6 +6,7 @@
 #include <medax/kernel/sweep.hpp>
 
 #include "run_context.hpp"
+#include "sweep_backend.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -33,7 +35,7 @@ struct Running {
   std::size_t job;
   pid_t pid;
   Clock::time_point start;
-  bool timed_out = false;
+  std::string timeout_error;  ///< set when the job is killed for its time: why
 };
 
 enum class Previous { none, done, changed };
@@ -136,8 +138,8 @@ std::string job_error(const fs::path& dir) {
 }
 
 /// Writes status.json; returns its `status`.
-std::string record_status(const SweepJob& job, const fs::path& dir, int wait_status, bool timed_out, double seconds,
-                          const SweepConfig& config, const Stop& stop) {
+std::string record_status(const SweepJob& job, const fs::path& dir, int wait_status, const std::string& timeout_error,
+                          double seconds, const SweepConfig& config, const Stop& stop) {
   nlohmann::json status;
   status["input"] = job.input.string();
   status["settings"] = job.settings;
@@ -145,16 +147,16 @@ std::string record_status(const SweepJob& job, const fs::path& dir, int wait_sta
   status["seconds"] = seconds;
   std::string state;
   const bool exited_ok = WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0;
-  if (stop.signal && !timed_out && !exited_ok) {
+  if (!timeout_error.empty()) {
+    state = "timeout";
+    status["error"] = timeout_error;
+  } else if (stop.signal && !exited_ok) {
     state = "interrupted";
     status["signal"] = stop.signal;
     status["error"] = stop.killed && WIFSIGNALED(wait_status) && WTERMSIG(wait_status) == SIGKILL
                           ? fmt::format("the sweep was stopped by {}; the job was killed after the {} s grace",
                                         detail::signal_name(stop.signal), config.limits.interrupt_grace_seconds)
                           : fmt::format("the sweep was stopped by {}; the job stopped on it", detail::signal_name(stop.signal));
-  } else if (timed_out) {
-    state = "timeout";
-    status["error"] = fmt::format("killed after the {} s time limit", config.limits.timeout_seconds);
   } else if (WIFSIGNALED(wait_status)) {
     state = "crashed";
     status["signal"] = WTERMSIG(wait_status);
@@ -182,30 +184,54 @@ std::string duration_text(double seconds) {
   return s >= 3600 ? fmt::format("{}h{:02}m", s / 3600, (s % 3600) / 60) : fmt::format("{}m{:02}s", s / 60, s % 60);
 }
 
-}  // namespace
-
-SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const SweepOptions& options) {
-  SweepSummary summary;
-  summary.total = jobs.size();
-  const fs::path jobs_dir = options.out_dir / "jobs";
-  fs::create_directories(jobs_dir);
-  // The handler `medax run` uses: it only raises a flag, which the loop below polls.
-  detail::install_interrupt_handler();
-
-  std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    switch (previous_run(jobs[i], jobs_dir / jobs[i].name)) {
-      case Previous::done: ++summary.skipped; break;
-      case Previous::changed: ++summary.rerun_changed; pending.push_back(i); break;
-      case Previous::none: pending.push_back(i); break;
+/// On the first SIGINT/SIGTERM: holds further ones, forwards it to every running job and sets
+/// the grace deadline. In a Slurm task, a SIGTERM at the task's time limit is Slurm ending it:
+/// the jobs are killed at once (Slurm's SIGKILL follows within KillWait) and recorded as time-outs.
+void begin_stop(Stop& stop, std::vector<Running>& running, const SweepConfig& config, const SweepOptions& options,
+                const std::optional<detail::TaskLimit>& task_limit) {
+  stop.signal = detail::interrupt_signal();
+  // A second Ctrl-C would _Exit in the handler and orphan the jobs: hold it until they are
+  // recorded (the wait is bounded by the grace).
+  sigset_t block;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  ::pthread_sigmask(SIG_BLOCK, &block, &stop.old_mask);
+  if (task_limit && stop.signal == SIGTERM && Clock::now() >= task_limit->end - detail::TaskLimit::kSlack) {
+    for (Running& r : running) {
+      ::kill(-r.pid, SIGKILL);
+      r.timeout_error = fmt::format("killed by Slurm at the task's time limit ({})", task_limit->text);
     }
+    stop.killed = true;
+    return;
   }
-  if (!options.quiet && summary.skipped)
-    fmt::print(stderr, "[sweep] {} of {} jobs already finished: skipped\n", summary.skipped, jobs.size());
-  if (!options.quiet && summary.rerun_changed)
-    fmt::print(stderr, "[sweep] {} finished job{} run again: the configuration changed since (pipeline file, "
-               "settings or plugin defaults)\n", summary.rerun_changed, summary.rerun_changed == 1 ? "" : "s");
+  stop.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                     std::chrono::duration<double>(config.limits.interrupt_grace_seconds));
+  for (const Running& r : running) ::kill(-r.pid, stop.signal);
+  if (!options.quiet)
+    fmt::print(stderr, "[sweep] {}: stopping {} running job{} (killed if still running after {} s)\n",
+               detail::signal_name(stop.signal), running.size(), running.size() == 1 ? "" : "s",
+               config.limits.interrupt_grace_seconds);
+}
 
+/// Drops the signals held while stopping (they would _Exit now), then restores the mask.
+void end_stop(const Stop& stop) {
+  if (!stop.signal) return;
+  sigset_t held;
+  sigemptyset(&held);
+  sigaddset(&held, SIGINT);
+  sigaddset(&held, SIGTERM);
+  const timespec zero{0, 0};
+  while (::sigtimedwait(&held, nullptr, &zero) > 0) {
+  }
+  ::pthread_sigmask(SIG_SETMASK, &stop.old_mask, nullptr);
+}
+
+/// Runs the `pending` jobs, `options.parallel_jobs` at a time, each recorded in its status.json;
+/// counts them into `summary`. Returns how the sweep was stopped (signal 0: it was not).
+Stop run_jobs(const SweepConfig& config, const std::vector<SweepJob>& jobs, const std::vector<std::size_t>& pending,
+              const SweepOptions& options, SweepSummary& summary, const std::optional<detail::TaskLimit>& task_limit) {
+  const fs::path jobs_dir = options.out_dir / "jobs";
   std::vector<Running> running;
   std::size_t next = 0, finished = 0;
   Stop stop;
@@ -220,23 +246,7 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
       running.push_back({pending[next], start_job(config, job, dir, options), Clock::now()});
       ++next;
     }
-    if (detail::interrupt_requested() && !stop.signal) {
-      stop.signal = detail::interrupt_signal();
-      // A second Ctrl-C would _Exit in the handler and orphan the jobs: hold it until they are
-      // recorded (the wait is bounded by the grace).
-      sigset_t block;
-      sigemptyset(&block);
-      sigaddset(&block, SIGINT);
-      sigaddset(&block, SIGTERM);
-      ::pthread_sigmask(SIG_BLOCK, &block, &stop.old_mask);
-      stop.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                         std::chrono::duration<double>(config.limits.interrupt_grace_seconds));
-      for (const Running& r : running) ::kill(-r.pid, stop.signal);
-      if (!options.quiet)
-        fmt::print(stderr, "[sweep] {}: stopping {} running job{} (killed if still running after {} s)\n",
-                   detail::signal_name(stop.signal), running.size(), running.size() == 1 ? "" : "s",
-                   config.limits.interrupt_grace_seconds);
-    }
+    if (detail::interrupt_requested() && !stop.signal) begin_stop(stop, running, config, options, task_limit);
     if (stop.signal && !stop.killed && Clock::now() >= stop.deadline) {
       for (const Running& r : running) ::kill(-r.pid, SIGKILL);
       stop.killed = true;
@@ -244,9 +254,10 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     for (auto it = running.begin(); it != running.end();) {
       const double elapsed = std::chrono::duration<double>(Clock::now() - it->start).count();
-      if (config.limits.timeout_seconds > 0 && elapsed > config.limits.timeout_seconds && !it->timed_out && !stop.signal) {
+      if (config.limits.timeout_seconds > 0 && elapsed > config.limits.timeout_seconds && it->timeout_error.empty() &&
+          !stop.signal) {
         ::kill(-it->pid, SIGKILL);
-        it->timed_out = true;
+        it->timeout_error = fmt::format("killed after the {} s time limit", config.limits.timeout_seconds);
       }
       int wait_status = 0;
       if (::waitpid(it->pid, &wait_status, WNOHANG) != it->pid) {
@@ -254,7 +265,8 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
         continue;
       }
       const SweepJob& job = jobs[it->job];
-      const std::string state = record_status(job, jobs_dir / job.name, wait_status, it->timed_out, elapsed, config, stop);
+      const std::string state =
+          record_status(job, jobs_dir / job.name, wait_status, it->timeout_error, elapsed, config, stop);
       const bool ok = state == "ok";
       if (state == "interrupted") ++summary.interrupted;
       else ok ? ++summary.succeeded : ++summary.failed;
@@ -262,25 +274,62 @@ SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& j
       if (!options.quiet) {
         const double spent = std::chrono::duration<double>(Clock::now() - sweep_start).count();
         const double left = spent / finished * (pending.size() - finished);
-        fmt::print(stderr, "[sweep] {}/{} done, {} failed, ~{} left{}\n", finished + summary.skipped, jobs.size(),
+        fmt::print(stderr, "[sweep] {}/{} done, {} failed, ~{} left{}\n", finished + summary.skipped, summary.total,
                    summary.failed, duration_text(left), ok ? "" : " (" + job.name + " " + state + ")");
       }
       it = running.erase(it);
     }
   }
-  write_sweep_results(config, jobs, options.out_dir);
-  if (stop.signal) {
-    // Drop the signals held meanwhile (they would _Exit now), then restore the mask.
-    sigset_t held;
-    sigemptyset(&held);
-    sigaddset(&held, SIGINT);
-    sigaddset(&held, SIGTERM);
-    const timespec zero{0, 0};
-    while (::sigtimedwait(&held, nullptr, &zero) > 0) {
+  return stop;
+}
+
+}  // namespace
+
+namespace detail {
+
+std::vector<std::size_t> jobs_to_run(const std::vector<SweepJob>& jobs, const fs::path& jobs_dir,
+                                     SweepSummary& summary, bool quiet) {
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    switch (previous_run(jobs[i], jobs_dir / jobs[i].name)) {
+      case Previous::done: ++summary.skipped; break;
+      case Previous::changed: ++summary.rerun_changed; pending.push_back(i); break;
+      case Previous::none: pending.push_back(i); break;
     }
-    ::pthread_sigmask(SIG_SETMASK, &stop.old_mask, nullptr);
-    summary.signal = stop.signal;
   }
+  if (!quiet && summary.skipped)
+    fmt::print(stderr, "[sweep] {} of {} jobs already finished: skipped\n", summary.skipped, jobs.size());
+  if (!quiet && summary.rerun_changed)
+    fmt::print(stderr, "[sweep] {} finished job{} run again: the configuration changed since (pipeline file, "
+               "settings or plugin defaults)\n", summary.rerun_changed, summary.rerun_changed == 1 ? "" : "s");
+  return pending;
+}
+
+std::string run_job_as_task(const SweepConfig& config, const SweepJob& job, const SweepOptions& options,
+                            const std::optional<TaskLimit>& task_limit) {
+  fs::create_directories(options.out_dir / "jobs");
+  install_interrupt_handler();
+  SweepSummary summary;
+  summary.total = 1;
+  const Stop stop = run_jobs(config, {job}, {0}, options, summary, task_limit);
+  end_stop(stop);
+  const nlohmann::json status = read_json_file(options.out_dir / "jobs" / job.name / "status.json");
+  return status.is_object() ? status.value("status", "unknown") : "unknown";
+}
+
+}  // namespace detail
+
+SweepSummary run_sweep(const SweepConfig& config, const std::vector<SweepJob>& jobs, const SweepOptions& options) {
+  SweepSummary summary;
+  summary.total = jobs.size();
+  fs::create_directories(options.out_dir / "jobs");
+  // The handler `medax run` uses: it only raises a flag, which the loop polls.
+  detail::install_interrupt_handler();
+  const std::vector<std::size_t> pending = detail::jobs_to_run(jobs, options.out_dir / "jobs", summary, options.quiet);
+  const Stop stop = run_jobs(config, jobs, pending, options, summary, std::nullopt);
+  write_sweep_results(config, jobs, options.out_dir);
+  end_stop(stop);
+  summary.signal = stop.signal;
   return summary;
 }
 

@@ -48,12 +48,19 @@ double envelope_step(const Shape& shape, const services::Envelope& envelope, con
   return std::min(smallest_side(slo, shi), smallest_side(elo, ehi)) / std::max(1, options.resolution);
 }
 
+void add_distance(Metrics& m, const std::string& name, double value, double diagonal) {
+  m[name] = value;
+  m[name + "_pct"] = diagonal > 0 ? 100.0 * value / diagonal : 0.0;
+}
+
+double shape_diagonal(const Shape& shape) {
+  const auto [lo, hi] = bbox(surface_points(shape));
+  return (hi - lo).norm();
+}
+
 Metrics ReconstructionResult::metrics() const {
   Metrics m;
-  const auto both = [&](const std::string& name, double value) {
-    m[name] = value;
-    m[name + "_pct"] = diagonal > 0 ? 100.0 * value / diagonal : 0.0;
-  };
+  const auto both = [&](const std::string& name, double value) { add_distance(m, name, value, diagonal); };
   m["bbox_diagonal"] = diagonal;
   m["envelope_step"] = step;
   m["envelope_primitives"] = static_cast<double>(primitives);
@@ -72,11 +79,8 @@ Metrics ReconstructionResult::metrics() const {
   return m;
 }
 
-namespace {
-
-/// Surface samples: the mesh vertices that faces use (as the VMAS code does) and optional
-/// area-uniform samples; without a mesh, the shape's samples.
-std::vector<Vec3> surface_samples(const Shape& shape, const ReconstructionOptions& options, std::mt19937_64& rng) {
+/// As the VMAS code does, the vertices are those that faces use.
+std::vector<Vec3> shape_samples(const Shape& shape, const ReconstructionOptions& options, std::mt19937_64& rng) {
   if (shape.mesh.empty()) return shape.samples.points;
   std::vector<Vec3> surface;
   if (options.use_vertices) {
@@ -92,6 +96,30 @@ std::vector<Vec3> surface_samples(const Shape& shape, const ReconstructionOption
   }
   return surface;
 }
+
+std::vector<double> distances_to_shape(const Shape& shape, const std::vector<Vec3>& points,
+                                       const services::CancelCheck& cancel) {
+  constexpr std::size_t kBlock = 8192;  // about 10 ms of queries
+  std::optional<services::SurfaceDistance> mesh_distance;
+  std::optional<services::PointIndex> sample_index;
+  if (!shape.mesh.empty()) mesh_distance.emplace(shape.mesh);
+  else sample_index.emplace(shape.samples.points);
+  std::vector<double> out(points.size());
+  for (std::size_t begin = 0; begin < points.size(); begin += kBlock) {
+    if (cancel) cancel();
+    const std::vector<Vec3> block(points.begin() + begin, points.begin() + std::min(points.size(), begin + kBlock));
+    std::vector<double> d;
+    if (mesh_distance) {
+      d = mesh_distance->distances(block);
+    } else {
+      for (const Vec3& p : block) d.push_back(sample_index->nearest(p).second);
+    }
+    std::copy(d.begin(), d.end(), out.begin() + begin);
+  }
+  return out;
+}
+
+namespace {
 
 /// `step` enlarged, when the options' guard asks for it, so that ∂E gets at most about
 /// max_envelope_samples points: about 1.5 points per step² of boundary (‖n‖₁ averages 1.5),
@@ -126,28 +154,11 @@ void measure_surface_to_envelope(const services::Envelope& envelope, const std::
 }
 
 /// Envelope -> surface: distances from the points of ∂E to the mesh (or the nearest sample),
-/// the mean weighted by area. The points go in blocks, with `cancel` polled between them.
+/// the mean weighted by area.
 void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& result,
                                  const services::CancelCheck& cancel) {
   if (result.envelope.size() == 0) return;
-  const std::vector<Vec3>& points = result.envelope.points;
-  constexpr std::size_t kBlock = 8192;  // about 10 ms of queries
-  std::optional<services::SurfaceDistance> mesh_distance;
-  std::optional<services::PointIndex> sample_index;
-  if (!shape.mesh.empty()) mesh_distance.emplace(shape.mesh);
-  else sample_index.emplace(shape.samples.points);
-  result.envelope_distances.resize(points.size());
-  for (std::size_t begin = 0; begin < points.size(); begin += kBlock) {
-    if (cancel) cancel();
-    const std::vector<Vec3> block(points.begin() + begin, points.begin() + std::min(points.size(), begin + kBlock));
-    std::vector<double> d;
-    if (mesh_distance) {
-      d = mesh_distance->distances(block);
-    } else {
-      for (const Vec3& p : block) d.push_back(sample_index->nearest(p).second);
-    }
-    std::copy(d.begin(), d.end(), result.envelope_distances.begin() + begin);
-  }
+  result.envelope_distances = distances_to_shape(shape, result.envelope.points, cancel);
   double weighted = 0, area = 0, mx = 0;
   for (std::size_t i = 0; i < result.envelope.size(); ++i) {
     weighted += result.envelope.areas[i] * result.envelope_distances[i];
@@ -171,11 +182,8 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
   if (medial.num_vertices() == 0) throw std::invalid_argument("the medial complex is empty");
 
   ReconstructionResult result;
-  {
-    const auto [lo, hi] = bbox(surface_points(shape));
-    result.diagonal = (hi - lo).norm();
-  }
-  const std::vector<Vec3> surface = surface_samples(shape, options, rng);
+  result.diagonal = shape_diagonal(shape);
+  const std::vector<Vec3> surface = shape_samples(shape, options, rng);
   if (surface.empty())
     throw std::invalid_argument("no surface samples (vertices: false and surface_samples: 0)");
   result.surface_samples = surface.size();

@@ -44,6 +44,21 @@ struct ReconstructionResult {
 
 using Progress = std::function<void(double, std::string_view)>;
 
+/// Diagonal of the bounding box of the shape's mesh vertices (or, without a mesh, its samples).
+double shape_diagonal(const Shape& shape);
+
+/// The points measured from the shape's side: the mesh vertices that faces use (`use_vertices`)
+/// and `uniform_samples` area-uniform points; without a mesh, the shape's samples.
+std::vector<Vec3> shape_samples(const Shape& shape, const ReconstructionOptions& options, std::mt19937_64& rng);
+
+/// Unsigned distance from each point to the shape: to its mesh (CGAL AABB tree), or without a
+/// mesh to the nearest sample. In blocks, with `cancel` polled between them.
+std::vector<double> distances_to_shape(const Shape& shape, const std::vector<Vec3>& points,
+                                       const services::CancelCheck& cancel = {});
+
+/// Adds `name` = value and `name_pct` = 100 · value / diagonal.
+void add_distance(Metrics& m, const std::string& name, double value, double diagonal);
+
 /// Measures `medial` against the shape's mesh (or, without a mesh, its samples as a point
 /// cloud). Throws std::invalid_argument when there is nothing to measure. `cancel` (optional) is
 /// polled from the worker threads every few hundred points; what it throws stops the measure.

@@ -1,6 +1,10 @@
 #include "stages.hpp"
 
 #include "counts.hpp"
+#include "rebuilt_surface.hpp"
+
+#include <medax/reconstructed_surface.hpp>
+#include <medax/representation_size.hpp>
 
 #include <medax/services/topology.hpp>
 
@@ -20,7 +24,7 @@ constexpr const char* kDoc = "docs/plugins/evaluation.md";
 StageInfo ReconstructionStage::describe() {
   return {"reconstruction",
           "Two-sided distances (Hausdorff, MSD's mean errors) between the surface and the "
-          "sphere/cone/slab envelope",
+          "sphere/cone/slab envelope, or the rebuilt surface when a stage published one (MSD's Ŝ)",
           kDoc};
 }
 
@@ -60,6 +64,25 @@ void ReconstructionStage::check_scene(const Scene& scene) const {
 }
 
 Metrics ReconstructionStage::evaluate(const Shape& shape, const MedialComplex& medial, Context& ctx) {
+  if (const ReconstructedSurface* rebuilt = ctx.data().find(kReconstructedSurface))
+    return measure_rebuilt(shape, *rebuilt, ctx);
+  return measure_envelope(shape, medial, ctx);
+}
+
+Metrics ReconstructionStage::measure_rebuilt(const Shape& shape, const ReconstructedSurface& rebuilt, Context& ctx) {
+  ctx.progress(0.0, "rebuilt surface");
+  const RebuiltSurfaceResult r =
+      measure_rebuilt_surface(shape, rebuilt.surface, options_, ctx.rng(), [&ctx] { ctx.check_cancelled(); });
+  ctx.info(fmt::format("measured the rebuilt surface published by '{}' ({}; {} vertices, {} faces), not the "
+                       "envelope: {} shape samples, {} rebuilt samples; Hausdorff {:.4g}% of the bbox diagonal",
+                       ctx.data().publisher(kReconstructedSurface.name), rebuilt.method,
+                       rebuilt.surface.vertices.size(), rebuilt.surface.faces.size(), r.surface_samples,
+                       r.rebuilt_samples, 100.0 * r.hausdorff() / r.diagonal));
+  if (export_envelope_) ctx.warn("`export_envelope` is ignored: the rebuilt surface was measured, not the envelope");
+  return r.metrics();
+}
+
+Metrics ReconstructionStage::measure_envelope(const Shape& shape, const MedialComplex& medial, Context& ctx) {
   const ReconstructionResult r =
       measure_reconstruction(
           shape, medial, options_, ctx.rng(),
@@ -90,12 +113,24 @@ Metrics ReconstructionStage::evaluate(const Shape& shape, const MedialComplex& m
 // ---- counts ------------------------------------------------------------------------------
 
 StageInfo CountsStage::describe() {
-  return {"counts", "Element counts #v, #e (edges in no triangle), #f, and MSD's N_d = #v+#e+#f and N_c = 4·#v",
+  return {"counts",
+          "Element counts #v, #e (edges in no triangle), #f, and MSD's N_d = #v+#e+#f and N_c = 4·#v (or the "
+          "representation's own N_d, N_c when a stage published them, e.g. msd)",
           kDoc};
 }
 
-Metrics CountsStage::evaluate(const Shape&, const MedialComplex& medial, Context&) {
-  return count_elements(medial).metrics();
+Metrics CountsStage::evaluate(const Shape&, const MedialComplex& medial, Context& ctx) {
+  const ElementCounts counts = count_elements(medial);
+  Metrics m = counts.metrics();
+  if (const RepresentationSize* size = ctx.data().find(kRepresentationSize)) {
+    m["N_d"] = static_cast<double>(size->discrete);
+    m["N_c"] = static_cast<double>(size->continuous);
+    ctx.info(fmt::format("N_d {} and N_c {} are the representation's size published by '{}' ({}), not the "
+                         "complex's count (#v + #e + #f = {}, 4·#v = {})",
+                         size->discrete, size->continuous, ctx.data().publisher(kRepresentationSize.name),
+                         size->rule, counts.discrete(), counts.continuous()));
+  }
+  return m;
 }
 
 // ---- topology ----------------------------------------------------------------------------

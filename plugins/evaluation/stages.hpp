@@ -3,11 +3,13 @@
 // topology service. Declared here so tests can call them directly.
 #include "reconstruction.hpp"
 
+#include <medax/reconstructed_surface.hpp>
 #include <medax/stage.hpp>
 
 namespace medax::evaluation {
 
-/// Distances between the input surface and the sphere/cone/slab envelope of the complex.
+/// Distances between the input surface and the sphere/cone/slab envelope of the complex, or the
+/// rebuilt surface (kReconstructedSurface) when an earlier stage published one.
 class ReconstructionStage : public EvaluationStage {
  public:
   static StageInfo describe();
@@ -19,11 +21,15 @@ class ReconstructionStage : public EvaluationStage {
   void check_scene(const Scene& scene) const override;
 
  private:
+  Metrics measure_rebuilt(const Shape& shape, const ReconstructedSurface& rebuilt, Context& ctx);
+  Metrics measure_envelope(const Shape& shape, const MedialComplex& medial, Context& ctx);
+
   ReconstructionOptions options_;
   bool export_envelope_ = false;
 };
 
-/// #v, #e, #f, N_d and N_c as MSD counts them.
+/// #v, #e, #f, N_d and N_c as MSD counts them; N_d and N_c from kRepresentationSize when an
+/// earlier stage published it.
 class CountsStage : public EvaluationStage {
  public:
   static StageInfo describe();

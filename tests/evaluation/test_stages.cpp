@@ -13,6 +13,7 @@
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
 #include <capturing_context.hpp>
+#include "shape_fixtures.hpp"
 #include <test_paths.hpp>
 
 #include <Eigen/Geometry>
@@ -34,22 +35,8 @@ using namespace medax;
 
 namespace {
 
-/// Largest distance from the exact sphere of radius r (centre 0) to an inscribed icosphere:
-/// r minus the smallest distance from the centre to a face plane.
-double icosphere_sag(const SurfaceMesh& m, double r) {
-  double inner = r;
-  for (const Tri& f : m.faces) {
-    const Vec3 n = (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]).normalized();
-    inner = std::min(inner, std::abs(n.dot(m.vertices[f[0]])));
-  }
-  return r - inner;
-}
-
-MedialComplex one_sphere(double r) {
-  MedialComplex mc;
-  mc.add_vertex(Vec3::Zero(), r);
-  return mc;
-}
+using test::icosphere_sag;
+using test::one_sphere;
 
 /// Runs a fresh stage at its defaults with `changes` applied.
 Metrics run_stage(EvaluationStage& stage, const Shape& shape, const MedialComplex& mc,

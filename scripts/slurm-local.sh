@@ -113,7 +113,8 @@ wait_idle() {
     esac
     sleep 0.5
   done
-  die "the node did not become idle within 30 s (state '${s:-unknown}'); logs: $state/log/slurmctld.log, $state/log/slurmd.log"
+  die "the node did not become idle within 30 s (state '${s:-unknown}'); last lines of $state/log/:
+$(tail -n 4 "$state/log/slurmctld.log" "$state/log/slurmd.log" 2>&1)"
 }
 
 start() {

@@ -94,7 +94,9 @@ std::optional<double> duration_seconds(const std::string& text) {
   if (text.empty() || text.find_first_not_of("0123456789:-") != std::string::npos) return std::nullopt;
   double days = 0;
   std::string rest = text;
-  if (const auto dash = rest.find('-'); dash != std::string::npos) {
+  const bool has_days = rest.find('-') != std::string::npos;  // DAYS-HOURS[:MINUTES[:SECONDS]]
+  if (const auto dash = rest.find('-'); has_days) {
+    if (dash == 0 || rest.find('-', dash + 1) != std::string::npos) return std::nullopt;
     days = std::stod(rest.substr(0, dash));
     rest = rest.substr(dash + 1);
   }
@@ -105,8 +107,8 @@ std::optional<double> duration_seconds(const std::string& text) {
     parts.push_back(std::stod(part));
   }
   double seconds = 0;
-  if (parts.size() == 1) seconds = days > 0 ? parts[0] * 3600 : parts[0] * 60;
-  else if (parts.size() == 2) seconds = days > 0 ? parts[0] * 3600 + parts[1] * 60 : parts[0] * 60 + parts[1];
+  if (parts.size() == 1) seconds = has_days ? parts[0] * 3600 : parts[0] * 60;
+  else if (parts.size() == 2) seconds = has_days ? parts[0] * 3600 + parts[1] * 60 : parts[0] * 60 + parts[1];
   else if (parts.size() == 3) seconds = parts[0] * 3600 + parts[1] * 60 + parts[2];
   else return std::nullopt;
   return days * 86400 + seconds;

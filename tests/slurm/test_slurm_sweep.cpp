@@ -3,6 +3,7 @@
 // the same job folders. Also: --no-wait then --results-only, a task Slurm kills at its own time
 // limit, and the errors when sbatch is missing or the cluster is down.
 #include "cli_helpers.hpp"
+#include "../../framework/src/slurm_commands.hpp"  // internal: the duration parsing tested below
 
 #include <nlohmann/json.hpp>
 
@@ -199,4 +200,22 @@ TEST_CASE("without sbatch on PATH, --backend slurm says what to do", "[slurm]") 
   CHECK(r.code == 1);
   CHECK_THAT(r.err, Catch::Contains("sbatch not found"));
   CHECK_THAT(r.err, Catch::Contains("without --backend slurm the sweep runs on this machine"));
+}
+
+TEST_CASE("Slurm's duration texts are read as seconds, and limits written in whole minutes", "[slurm]") {
+  using medax::slurm::duration_seconds;
+  CHECK(duration_seconds("30") == 1800);  // a lone number is minutes, as in --time
+  CHECK(duration_seconds("5:00") == 300);
+  CHECK(duration_seconds("1:00:00") == 3600);
+  CHECK(duration_seconds("2-12") == 2 * 86400 + 12 * 3600);
+  CHECK(duration_seconds("0-12") == 12 * 3600);
+  CHECK(duration_seconds("1-00:30") == 86400 + 1800);
+  CHECK(duration_seconds("1-02:03:04") == 86400 + 2 * 3600 + 3 * 60 + 4);
+  CHECK_FALSE(duration_seconds("UNLIMITED"));
+  CHECK_FALSE(duration_seconds("NOT_SET"));
+  CHECK_FALSE(duration_seconds("1::00"));
+  CHECK_FALSE(duration_seconds("-5"));
+  CHECK(medax::slurm::time_text(3 + 60) == "0:02:00");  // rounded up: Slurm counts minutes
+  CHECK(medax::slurm::time_text(3600) == "1:00:00");
+  CHECK(medax::slurm::time_text(2 * 86400) == "48:00:00");
 }

@@ -193,6 +193,37 @@ TEST_CASE("reconstruction: options: uniform surface samples, seeding, point clou
   }
 }
 
+TEST_CASE("reconstruction: a point cloud on a sphere against its exact medial sphere, both ways", "[reconstruction]") {
+  // Oriented samples and no mesh: the icosphere's vertices, on the unit sphere.
+  const SurfaceMesh ico = testing::make_sphere(1.0, 3);
+  Shape cloud;
+  cloud.samples = services::vertex_samples(ico);
+  REQUIRE(cloud.mesh.empty());
+  // The farthest point of the sphere from the samples is a spherical Voronoi vertex: the unit
+  // normal of a face of their convex hull (the icosphere), equidistant from its three corners.
+  double covering = 0;
+  for (const Tri& f : ico.faces) {
+    const Vec3 n = (ico.vertices[f[1]] - ico.vertices[f[0]]).cross(ico.vertices[f[2]] - ico.vertices[f[0]]).normalized();
+    covering = std::max(covering, (n - ico.vertices[f[0]]).norm());
+  }
+  const Metrics m = reconstruction(cloud, one_sphere(1.0));
+  const double step = m.at("envelope_step");
+  INFO("covering radius " << covering << ", step " << step);
+  // Samples → envelope: they lie on ∂E.
+  CHECK(m.at("surface_to_envelope_max") < 1e-12);
+  CHECK(m.at("eps1") < 1e-12);
+  // Envelope → samples: ∂E is the unit sphere, whose farthest point from the samples is at the
+  // covering radius; the boundary points come within the grid's covering radius (< a step) of it.
+  CHECK(m.at("envelope_to_surface_max") <= covering + 1e-9);
+  CHECK(m.at("envelope_to_surface_max") >= covering - step);
+  CHECK(m.at("envelope_to_surface_mean") < covering);
+  CHECK(m.at("envelope_to_surface_mean") > 0.25 * covering);
+  CHECK(m.at("hausdorff") == m.at("envelope_to_surface_max"));
+  CHECK(m.at("eps") == m.at("eps2"));
+  CHECK(m.at("surface_samples") == ico.vertices.size());
+  CHECK(m.at("envelope_area") == Approx(4 * M_PI).epsilon(0.005));
+}
+
 TEST_CASE("reconstruction: export_envelope writes the boundary points in the input's frame", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 3);

@@ -123,9 +123,10 @@ int run_sweep(const RunArgs& args) {
                options.out_dir.string());
   const SweepSummary summary =
       slurm ? run_sweep_on_slurm(config, jobs, options, slurm_options(args)) : run_sweep(config, jobs, options);
+  if (slurm && summary.signal) return failed_run_exit_code(summary.signal);  // it said what keeps running
   if (slurm && args.slurm.no_wait) {
-    fmt::print("submitted: the same command with --results-only collects the results once the array has run "
-               "(`squeue` shows it)\n");
+    fmt::print("--no-wait: once the array has run (`squeue` shows it), the same command with --results-only "
+               "collects the results\n");
     return 0;
   }
   fmt::print("results: {} ({} ok, {} failed, {} skipped as already done{}{})\n",

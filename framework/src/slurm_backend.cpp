@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <thread>
 
 namespace medax {
@@ -305,6 +306,37 @@ void print_stopped_waiting(const Submission& s) {
              s.array_id, s.array_id);
 }
 
+/// An array an earlier command submitted (--no-wait) and nobody collected: waited for and
+/// recorded, its jobs that ended into `ended` (this command does not send them again). With
+/// --no-wait it is only recorded if it has finished. False when this command should stop here:
+/// the array still runs under --no-wait, or Ctrl-C stopped the wait (`summary.signal`).
+bool collect_earlier(const std::vector<SweepJob>& jobs, const SweepOptions& options, const SlurmOptions& slurm,
+                     SweepSummary& summary, std::vector<std::string>& ended) {
+  std::optional<Submission> earlier = read_submission(options.out_dir);
+  if (!earlier || earlier->settled) return true;
+  if (!slurm.wait) {
+    std::size_t active = 0;
+    const auto states = slurm::array_task_states(earlier->array_id, active);
+    if (active > 0) {
+      fmt::print(stderr, "[sweep] array {} submitted earlier still has {} task(s) pending or running: nothing "
+                 "submitted (run without --no-wait to wait for it and then submit what is missing)\n",
+                 earlier->array_id, active);
+      return false;
+    }
+    settle(*earlier, states, jobs, options.out_dir);
+    return true;
+  }
+  if (!options.quiet) fmt::print(stderr, "[sweep] array {} submitted earlier: waiting for it\n", earlier->array_id);
+  if (!finish(*earlier, jobs, options, slurm)) {
+    print_stopped_waiting(*earlier);
+    summary.signal = detail::interrupt_signal();
+    return false;
+  }
+  for (const std::string& name : earlier->jobs)
+    if (!status_field(options.out_dir, name, "status").empty()) ended.push_back(name);
+  return true;
+}
+
 }  // namespace
 
 SweepSummary run_sweep_on_slurm(const SweepConfig& config, const std::vector<SweepJob>& jobs,
@@ -313,28 +345,12 @@ SweepSummary run_sweep_on_slurm(const SweepConfig& config, const std::vector<Swe
   summary.total = jobs.size();
   fs::create_directories(options.out_dir / "jobs");
   detail::install_interrupt_handler();
-  std::optional<Submission> earlier = read_submission(options.out_dir);
-  if (earlier && !earlier->settled && !slurm.wait) {
-    std::size_t active = 0;
-    const auto states = slurm::array_task_states(earlier->array_id, active);
-    if (active > 0) {
-      fmt::print(stderr, "[sweep] array {} submitted earlier still has {} task(s) pending or running: nothing "
-                 "submitted (run without --no-wait to wait for it and then submit what is missing)\n",
-                 earlier->array_id, active);
-      return summary;
-    }
-    settle(*earlier, states, jobs, options.out_dir);
-  }
-  if (earlier && !earlier->settled) {  // a --no-wait submission: wait for it before sending more
-    if (!options.quiet) fmt::print(stderr, "[sweep] array {} submitted earlier: waiting for it\n", earlier->array_id);
-    if (!finish(*earlier, jobs, options, slurm)) {
-      print_stopped_waiting(*earlier);
-      summary.signal = detail::interrupt_signal();
-      return summary;
-    }
-  }
+  std::vector<std::string> ended;  // jobs of an earlier array that ended while this command waited
+  if (!collect_earlier(jobs, options, slurm, summary, ended)) return summary;
+  const std::set<std::string> just_ended(ended.begin(), ended.end());
   std::vector<std::string> names;
   for (std::size_t i : detail::jobs_to_run(jobs, options.out_dir / "jobs", summary, options.quiet)) {
+    if (just_ended.count(jobs[i].name)) continue;
     names.push_back(jobs[i].name);
     fs::create_directories(options.out_dir / "jobs" / jobs[i].name);
     fs::remove(options.out_dir / "jobs" / jobs[i].name / "status.json");
@@ -351,7 +367,8 @@ SweepSummary run_sweep_on_slurm(const SweepConfig& config, const std::vector<Swe
       summary.signal = detail::interrupt_signal();
     }
   }
-  count_results(names, options.out_dir, summary);
+  ended.insert(ended.end(), names.begin(), names.end());
+  count_results(ended, options.out_dir, summary);
   write_sweep_results(config, jobs, options.out_dir);
   return summary;
 }

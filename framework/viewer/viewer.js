@@ -7,6 +7,7 @@
 //   min=, max=   colour range;  pick=I   show medial vertex I's sphere
 //   w=, h=   canvas size in pixels (default: the window);  ui=0   no panel;  legend=0   no legend
 //   bench=N   render N frames orbiting the shape and record the mean frame time in #status
+// #status (hidden) records for tests and measurements: state, errors, field, triangles, load and frame ms.
 (function () {
   'use strict';
   const status = { state: 'loading', errors: 0, messages: [] };
@@ -161,11 +162,23 @@
   scene.add(pickedSphere);
 
   // ---- camera ----
-  const box = new THREE.Box3();
-  for (const id of Object.keys(layers)) {  // an empty layer's box would make the whole box NaN
-    const geometry = layers[id].object.geometry;
-    if (id !== 'spheres' && geometry.attributes.position.count > 0) box.expandByObject(layers[id].object);
+  // The camera frames the input surface; without one, the medial vertices between the 1st and
+  // 99th percentile on each axis (far poles of a raw Voronoi axis would shrink the shape to a dot).
+  function percentileBox(positions) {
+    const n = positions.length / 3, step = Math.max(1, Math.floor(n / 100000));
+    const b = new THREE.Box3();
+    if (n === 0) return b;
+    for (let c = 0; c < 3; ++c) {
+      const values = [];
+      for (let i = 0; i < n; i += step) values.push(positions[3 * i + c]);
+      values.sort((x, y) => x - y);
+      b.min.setComponent(c, values[Math.floor(0.01 * (values.length - 1))]);
+      b.max.setComponent(c, values[Math.ceil(0.99 * (values.length - 1))]);
+    }
+    return b;
   }
+  const box = layers.surface ? new THREE.Box3().setFromBufferAttribute(layers.surface.object.geometry.attributes.position)
+    : percentileBox(medial.positions);
   if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
   const bounds = box.getBoundingSphere(new THREE.Sphere());
   const controls = new THREE.OrbitControls(camera, renderer.domElement);
@@ -211,6 +224,17 @@
     showLegend(field, range);
     render();
   }
+  // The colours of the labels in `range` (at most 24 of them, evenly picked), side by side.
+  function labelSwatches(range) {
+    const count = Math.min(24, Math.round(range[1] - range[0]) + 1);
+    const swatches = [];
+    for (let k = 0; k < count; ++k) {
+      const label = Math.round(range[0] + (count > 1 ? (k * (range[1] - range[0])) / (count - 1) : 0));
+      const rgb = labelColour(label).map((x) => Math.round(255 * x)).join(',');
+      swatches.push(`rgb(${rgb}) ${(100 * k) / count}% ${(100 * (k + 1)) / count}%`);
+    }
+    return `linear-gradient(90deg, ${swatches.join(', ')})`;
+  }
   function showLegend(field, range) {
     const legend = document.getElementById('legend');
     legend.hidden = !field;
@@ -218,8 +242,7 @@
     document.getElementById('legend-name').textContent = field.key + (field.label ? ' (labels)' : '');
     const stops = field.label ? [] : kViridis.map((c, i) =>
       `rgb(${c.map((x) => Math.round(255 * x)).join(',')}) ${(100 * i / (kViridis.length - 1)).toFixed(0)}%`);
-    document.getElementById('legend-bar').style.background = field.label
-      ? 'repeating-linear-gradient(90deg,#e6194b 0 10%,#3cb44b 10% 20%,#4363d8 20% 30%,#f58231 30% 40%,#911eb4 40% 50%)'
+    document.getElementById('legend-bar').style.background = field.label ? labelSwatches(range)
       : `linear-gradient(90deg, ${stops.join(', ')})`;
     const fmt = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toPrecision(4));
     document.getElementById('legend-min').textContent = fmt(range[0]);
@@ -355,6 +378,7 @@
   buildFieldControls(chosenField());
   if (query.has('pick')) pick(Number(query.get('pick')));
   render();
+  statusElement.dataset.loadMs = performance.now().toFixed(0);  // since navigation: parse, decode, first frame
   if (query.has('bench')) statusElement.dataset.frameMs = benchmark(Number(query.get('bench')) || 30).toFixed(2);
   statusElement.dataset.field = document.getElementById('field').value;
   statusElement.dataset.triangles = String(medial.triangles.length / 3);

@@ -1,5 +1,5 @@
 #pragma once
-// The viewer tests' fixture: one small real run (quickstart's pipeline on the bundled ellipsoid),
+// The viewer tests' fixture: one small real run (quickstart's axis of the bundled ellipsoid),
 // its viewer page, and headless Chromium driven the way `medax snapshot` drives it.
 #include "png_pixels.hpp"
 #include "snapshot_chromium.hpp"
@@ -43,11 +43,12 @@ inline CommandOutput run_medax(const std::string& args) {
   return result;
 }
 
-/// The run folder of quickstart's pipeline on tests/data/ellipsoid.off (made once per process).
+/// The run folder of tests/viewer/small_run.yaml (quickstart's axis of tests/data/ellipsoid.off),
+/// made once per process.
 inline const std::filesystem::path& small_run() {
   static const std::filesystem::path folder = [] {
     const auto dir = scratch_dir("viewer_run") / "quickstart-ellipsoid";
-    const auto r = run_medax("run '" + (source_dir() / "pipelines" / "quickstart.yaml").string() + "' --input '" +
+    const auto r = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_run.yaml").string() + "' --input '" +
                          (data_dir() / "ellipsoid.off").string() + "' --out '" + dir.string() + "' --quiet");
     INFO(r.out << r.err);
     REQUIRE(r.code == 0);

@@ -203,8 +203,31 @@ Ending lost_task(const std::string& state, const Submission& s, std::size_t inde
                                 started.value("host", "?"), started.value("started", "?"), log)};
 }
 
-/// Records every task of a finished array: its status.json when the task could not write it,
-/// and Slurm's cause over the job's own status when Slurm killed it (time, memory, node).
+/// The status.json of a job Slurm ended, or nullopt to leave the job's own record as it is. A
+/// job that recorded its end keeps it unless Slurm killed it (time, memory, node): then the cause
+/// is Slurm's, and `slurm_state` marks it for --retry. A job with no record gets one from
+/// Slurm's state or the task's start marker.
+std::optional<nlohmann::json> slurm_record(nlohmann::json status, const SweepJob& job, const std::string& state,
+                                           const Submission& s, std::size_t index, const fs::path& out_dir) {
+  const auto cause = slurm_cause(state, s);
+  if (status.is_object()) {
+    if (!cause || status.contains("slurm_state") || status.value("status", "") == "ok") return std::nullopt;
+    if (status.value("status", "") != cause->first) {  // e.g. `crashed` by the OOM killer's SIGKILL
+      status["status"] = cause->first;
+      status["error"] = cause->second;
+    }
+    status["slurm_state"] = state;
+    return status;
+  }
+  const auto [what, error] = lost_task(state, s, index, out_dir);
+  if (what.empty()) return std::nullopt;
+  status = {{"input", job.input.string()}, {"settings", job.settings}, {"config_hash", job.config_hash},
+            {"status", what}, {"error", error}};
+  if (!state.empty()) status["slurm_state"] = state;
+  return status;
+}
+
+/// Records every task of a finished array (slurm_record) and marks the array collected.
 void settle(Submission& s, const std::map<std::size_t, std::string>& states, const std::vector<SweepJob>& jobs,
             const fs::path& out_dir) {
   std::map<std::string, const SweepJob*> by_name;
@@ -213,23 +236,12 @@ void settle(Submission& s, const std::map<std::size_t, std::string>& states, con
     const auto job = by_name.find(s.jobs[i]);
     if (job == by_name.end()) continue;  // no longer in the experiment
     const auto found = states.find(i);
-    const std::string state = found == states.end() ? "" : found->second;
     const fs::path file = out_dir / "jobs" / s.jobs[i] / "status.json";
-    nlohmann::json status = detail::read_json_file(file);
-    const auto cause = slurm_cause(state, s);
-    if (status.is_object() && (!cause || status.contains("slurm_state") ||
-                               status.value("status", "") == "ok" || status.value("status", "") == cause->first))
-      continue;  // the job's own record stands: it ended on its own, or saw the cause itself
-    const auto [what, error] = status.is_object() ? *cause : lost_task(state, s, i, out_dir);
-    if (what.empty()) continue;
-    if (!status.is_object())
-      status = {{"input", job->second->input.string()}, {"settings", job->second->settings},
-                {"config_hash", job->second->config_hash}};
-    status["status"] = what;
-    status["error"] = error;
-    if (!state.empty()) status["slurm_state"] = state;
+    const auto status = slurm_record(detail::read_json_file(file), *job->second,
+                                     found == states.end() ? "" : found->second, s, i, out_dir);
+    if (!status) continue;
     fs::create_directories(file.parent_path());
-    detail::write_json_file(file, status);
+    detail::write_json_file(file, *status);
   }
   s.settled = true;
   write_submission(out_dir, s);

@@ -190,6 +190,7 @@ TEST_CASE("a task Slurm kills at its own time limit is recorded as a time-out, t
   const nlohmann::json killed = status_of(dir / "out", "0002-cube-seconds=300");
   CHECK(killed.value("status", "") == "timeout");
   CHECK(killed.value("error", "") == "killed by Slurm at the task's time limit (1:00)");
+  CHECK(killed.value("slurm_state", "") == "TIMEOUT");  // from squeue: what --retry looks for
 }
 
 TEST_CASE("without sbatch on PATH, --backend slurm says what to do", "[slurm]") {

@@ -79,6 +79,9 @@ void DeyZhaoStage::check(const Shape& shape) const {
     if (options_.inner == InnerSelection::DelaunaySurface)
       throw std::invalid_argument("`inner: delaunay_surface` needs the mesh vertices as the points "
                                   "(`points: vertices`); with samples use `inner: mesh` or `normals`");
+    if (options_.inner == InnerSelection::Normals && shape.samples.normals.size() != shape.samples.size())
+      throw std::invalid_argument("`inner: normals` needs oriented samples and these have no normals: put a "
+                                  "`normals` stage before it");
   } else if (shape.mesh.vertices.size() < 4) {
     throw std::invalid_argument("the shape has no surface mesh (at least 4 vertices) and no samples to take the "
                                 "Delaunay tetrahedralization of");
@@ -86,7 +89,9 @@ void DeyZhaoStage::check(const Shape& shape) const {
   if ((options_.inner == InnerSelection::Mesh || options_.inner == InnerSelection::DelaunaySurface) &&
       shape.mesh.empty())
     throw std::invalid_argument(
-        fmt::format("`inner: {}` needs a surface mesh; use `inner: normals` or `none`", to_string(options_.inner)));
+        fmt::format("`inner: {}` needs a surface mesh; use `inner: normals` or `none`, or put `reconstruct_mesh` "
+                    "before it",
+                    to_string(options_.inner)));
 }
 
 namespace {
@@ -143,6 +148,9 @@ MedialComplex DeyZhaoStage::extract(const Shape& shape, Context& ctx) {
   MedialReport report;
   MedialComplex medial = medial_axis(input, options, &report);
   log_report(report, medial, samples, options.unbounded, ctx);
+  if (options.inner == InnerSelection::Auto && report.inner_used == InnerSelection::None)
+    ctx.warn("no mesh and no normals tell inside from outside, so the complex holds the outer medial axis too: put "
+             "a `normals` stage before it");
   return medial;
 }
 

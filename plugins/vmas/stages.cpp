@@ -41,7 +41,7 @@ std::string no_ball_hint(const Shape& shape, bool on_mesh) {
     return "the mesh is a valid solid; try a larger sb_initial_radius";
   }
   return "check that the sample normals point out of the solid (a `sample` stage after `repair` takes them from "
-         "outward faces)";
+         "outward faces; for a point cloud, a `normals` stage with `orient: true` orients them)";
 }
 
 /// The solver, with the likely cause added when it cannot start.
@@ -201,13 +201,20 @@ std::vector<ShapePart> VmasStage::needs() const {
 void VmasStage::check_scene(const Scene& scene) const {
   const Shape& shape = scene.shape;
   if (use_mesh(shape, input_)) {
-    if (shape.mesh.empty()) throw std::invalid_argument("`input: mesh` but the shape has no mesh");
+    if (shape.mesh.empty())
+      throw std::invalid_argument("`input: mesh` but the shape has no mesh: for a point cloud use `input: samples` "
+                                  "(or auto), or put `reconstruct_mesh` before it");
   } else {
     if (shape.samples.empty())
       throw std::invalid_argument("no oriented samples to sample from; add a `sample` conditioning stage before "
                                   "vmas or use `input: mesh`");
     if (shape.samples.normals.size() != shape.samples.size())
-      throw std::invalid_argument("the samples have no normals; VMAS needs oriented samples");
+      throw std::invalid_argument("the samples have no normals; VMAS needs oriented samples: put a `normals` stage "
+                                  "before it");
+    if (shape.samples.size() < input_options_.knn + 1)
+      throw std::invalid_argument(fmt::format("{} samples are too few for the kNN graph with knn_k = {}: give a "
+                                              "denser cloud or lower knn_k",
+                                              shape.samples.size(), input_options_.knn));
   }
 }
 

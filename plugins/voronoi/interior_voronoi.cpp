@@ -6,6 +6,8 @@
 #include <medax/services/inside.hpp>
 #include <medax/services/ray_parity.hpp>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <optional>
@@ -141,10 +143,53 @@ std::size_t add_voronoi_faces(const std::vector<Node>& nodes, bool parallel, Med
   return static_cast<std::size_t>(polygons);
 }
 
+/// The inside test of a cloud without a mesh (InsideMethod::Normals): a circumcentre is inside
+/// when it lies on the inner side of its cell's corners, the mean over the four corners p of
+/// n_p · (c − p)/|c − p| being negative (the inner pole of a sample lies against its outward
+/// normal: Amenta, Choi & Kolluri's pole labelling, with the normals given).
+std::vector<char> inside_by_normals(const DelaunayTetrahedralization& dt, const std::vector<Vec3>& points,
+                                    const std::vector<Vec3>& normals) {
+  std::vector<char> inside(dt.cells.size(), 0);
+  tbb::parallel_for(std::size_t{0}, dt.cells.size(), [&](std::size_t c) {
+    double side = 0;
+    for (const Index p : dt.cells[c]) {
+      const Vec3 to_centre = dt.circumcentres[c] - points[p];
+      const double length = to_centre.norm();
+      if (length > 0) side += normals[p].dot(to_centre) / length;
+    }
+    inside[c] = side < 0;
+  });
+  return inside;
+}
+
+/// 3.-5. The complex of the interior cells.
+MedialComplex assemble(const DelaunayTetrahedralization& dt, const std::vector<char>& inside,
+                       const InteriorVoronoiOptions& options, InteriorVoronoiReport& info) {
+  const auto t0 = Clock::now();
+  std::vector<Node> nodes;
+  MedialComplex medial;
+  medial.generator_kind = options.generator_kind;
+  info.interior = compact_cells(dt, inside, options.parallel, nodes, medial);
+  if (options.connectivity != Connectivity::None) add_voronoi_edges(nodes, medial);
+  info.voronoi_edges = medial.edges.size();
+  if (options.connectivity == Connectivity::Faces) info.voronoi_faces = add_voronoi_faces(nodes, options.parallel, medial);
+  info.seconds_complex = seconds_since(t0);
+  return medial;
+}
+
+void record_delaunay(const DelaunayTetrahedralization& dt, InteriorVoronoiReport& info) {
+  if (dt.cells.size() >= kNone)
+    throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
+  info.points = dt.vertex_point.size();
+  info.cells = dt.cells.size();
+}
+
 }  // namespace
 
 MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
                                const InteriorVoronoiOptions& options, InteriorVoronoiReport* report) {
+  if (options.inside == InsideMethod::Normals)
+    throw std::invalid_argument("the normals inside test takes oriented samples: call interior_voronoi(samples)");
   InteriorVoronoiReport info;
   auto t0 = Clock::now();
 
@@ -157,10 +202,7 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
   };
   const DelaunayTetrahedralization dt =
       services::delaunay_tetrahedralize_alongside(points, {options.parallel}, prepare_inside);
-  if (dt.cells.size() >= kNone)
-    throw std::invalid_argument("interior Voronoi: too many Delaunay cells for 32-bit indices");
-  info.points = dt.vertex_point.size();
-  info.cells = dt.cells.size();
+  record_delaunay(dt, info);
   info.seconds_delaunay = seconds_since(t0);
 
   // 2. Which circumcentres are strictly inside the mesh.
@@ -169,16 +211,25 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
                                             : side_of_mesh->inside(dt.circumcentres);
   info.seconds_inside = seconds_since(t0);
 
-  // 3.-5. The complex.
+  MedialComplex medial = assemble(dt, inside, options, info);
+  if (report) *report = info;
+  return medial;
+}
+
+MedialComplex interior_voronoi(const OrientedSamples& samples, const InteriorVoronoiOptions& options,
+                               InteriorVoronoiReport* report) {
+  if (samples.normals.size() != samples.size())
+    throw std::invalid_argument("the samples have no normals to tell inside from outside: estimate them (`normals` "
+                                "stage) or give a mesh");
+  InteriorVoronoiReport info;
+  auto t0 = Clock::now();
+  const DelaunayTetrahedralization dt = services::delaunay_tetrahedralize(samples.points, {options.parallel});
+  record_delaunay(dt, info);
+  info.seconds_delaunay = seconds_since(t0);
   t0 = Clock::now();
-  std::vector<Node> nodes;
-  MedialComplex medial;
-  medial.generator_kind = options.generator_kind;
-  info.interior = compact_cells(dt, inside, options.parallel, nodes, medial);
-  if (options.connectivity != Connectivity::None) add_voronoi_edges(nodes, medial);
-  info.voronoi_edges = medial.edges.size();
-  if (options.connectivity == Connectivity::Faces) info.voronoi_faces = add_voronoi_faces(nodes, options.parallel, medial);
-  info.seconds_complex = seconds_since(t0);
+  const std::vector<char> inside = inside_by_normals(dt, samples.points, samples.normals);
+  info.seconds_inside = seconds_since(t0);
+  MedialComplex medial = assemble(dt, inside, options, info);
   if (report) *report = info;
   return medial;
 }

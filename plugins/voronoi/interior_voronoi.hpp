@@ -10,10 +10,12 @@
 
 namespace medax::voronoi {
 
-/// How circumcentres are classified against the mesh. Both are exact and give the same answer.
+/// How circumcentres are classified. The two mesh tests are exact and give the same answer;
+/// Normals serves point clouds, which have no mesh.
 enum class InsideMethod {
   RayGrid,     ///< parity of +x rays over a (y, z) grid of the triangles (fast; medax::services::RayParityInside)
   SideOfMesh,  ///< CGAL::Side_of_triangle_mesh (medax::services::InsideTest), the reference
+  Normals,     ///< the side of the cell's corners' oriented normals (pole labelling; no mesh)
 };
 
 /// Face label: the number of the Voronoi polygon each triangle belongs to (consecutive in
@@ -61,6 +63,12 @@ struct InteriorVoronoiReport {
 /// Throws std::invalid_argument when the points span less than 3D or the mesh is not closed.
 MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMesh& mesh,
                                const InteriorVoronoiOptions& options = {},
+                               InteriorVoronoiReport* report = nullptr);
+
+/// The same for oriented samples without a mesh (a point cloud): a cell is interior when its
+/// circumcentre c lies on the inner side of its four corners p, sum of n_p · (c − p)/|c − p| < 0
+/// (`options.inside` is not used). Throws std::invalid_argument without one normal per sample.
+MedialComplex interior_voronoi(const OrientedSamples& samples, const InteriorVoronoiOptions& options = {},
                                InteriorVoronoiReport* report = nullptr);
 
 }  // namespace medax::voronoi

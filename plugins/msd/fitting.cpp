@@ -56,16 +56,16 @@ RadiusSolver::RadiusSolver(const std::vector<Tri>& faces, std::vector<double> ma
     diagonal_[i] = &matrix_.coeffRef(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i));
     base_diagonal_[i] = *diagonal_[i];
   }
-  ldlt_.analyzePattern(matrix_);  // once: the pattern never changes
+  solver_.setTolerance(options.solver_tolerance);
+  solver_.setMaxIterations(static_cast<Eigen::Index>(std::max<std::size_t>(100, n)));
 }
 
-void RadiusSolver::factorize(const std::vector<char>& contact) {
-  if (factorized_ && contact == factorized_contact_) return;
+void RadiusSolver::set_contact(const std::vector<char>& contact) {
+  if (ready_ && contact == contact_) return;
   for (std::size_t i = 0; i < diagonal_.size(); ++i) *diagonal_[i] = base_diagonal_[i] + (contact[i] ? options_.contact : 0.0);
-  ldlt_.factorize(matrix_);
-  if (ldlt_.info() != Eigen::Success) throw std::runtime_error("the fitting system is not positive definite; check the weights");
-  factorized_contact_ = contact;
-  factorized_ = true;
+  solver_.compute(matrix_);  // the Jacobi preconditioner: the inverse diagonal
+  contact_ = contact;
+  ready_ = true;
 }
 
 int RadiusSolver::solve(const Eigen::VectorXd& target, Eigen::VectorXd& radius) {
@@ -78,8 +78,10 @@ int RadiusSolver::solve(const Eigen::VectorXd& target, Eigen::VectorXd& radius) 
       contact[i] = radius[i] > max_radius_[i];
       rhs[i] = options_.expansion * target[i] + (contact[i] ? options_.contact * max_radius_[i] : 0.0);
     }
-    factorize(contact);
-    const Eigen::VectorXd next = ldlt_.solve(rhs);
+    set_contact(contact);
+    const Eigen::VectorXd next = solver_.solveWithGuess(rhs, radius);
+    if (solver_.info() != Eigen::Success)
+      throw std::runtime_error("the fitting system did not converge; check the weights (w must be positive)");
     const double change = (next - radius).lpNorm<Eigen::Infinity>();
     radius = next;
     ++solves;

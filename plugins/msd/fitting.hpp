@@ -3,13 +3,15 @@
 // template grow toward a target that is raised 25 times by 10 % of ρ0, smoothed by the template's
 // graph Laplacian and kept inside S by the alternating penalty scheme
 //   (λ L + w I + ŵ D_Z) ρ = w t + ŵ D_Z ρmax,   Z = {i : ρ_i > ρmax_i},
-// one sparse SPD solve per iteration (the symbolic factorisation is done once per primitive;
-// only the diagonal changes), then the hard clamp ρ ← min(ρ, ρmax).
+// one sparse SPD solve per iteration, then the hard clamp ρ ← min(ρ, ρmax). The system is strictly
+// diagonally dominant (off-diagonal row sum λ deg_i < diagonal λ deg_i + w), so Jacobi-preconditioned
+// conjugate gradients, warm-started at the current ρ, solve it in a few dozen products where a
+// Cholesky refactorisation per change of Z cost 70 % of the run (docs/plugins/msd.md).
 #include "primitive.hpp"
 #include "primitive_template.hpp"
 #include "target_mesh.hpp"
 
-#include <Eigen/SparseCholesky>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
 #include <vector>
@@ -27,13 +29,14 @@ struct FitOptions {
   double step_fraction = 0.1;       ///< raise per progression, in units of ρ0
   int max_iterations = 15;          ///< inner penalty iterations per progression
   double tolerance = 1e-5;          ///< stop when ‖Δρ‖∞ < tolerance · TargetMesh::scale()
+  double solver_tolerance = 1e-12;  ///< relative residual of each conjugate-gradient solve
   /// [C]'s growth rule: direction i's raise shrinks as ρ_i outgrows its smallest neighbour,
   /// step_i = max(0, min(step, 2·step − (ρ_i − min_j∈N(i) ρ_j))). Off in the paper.
   bool neighbour_cap = false;
   TemplateOptions templates;
 };
 
-/// The penalty iterations of one primitive, with the factorisation kept between solves.
+/// The penalty iterations of one primitive.
 class RadiusSolver {
  public:
   /// `faces` define the template graph (n vertices); `max_radius` is ρmax; `tolerance` absolute.
@@ -48,7 +51,8 @@ class RadiusSolver {
   std::vector<double> fit(double initial_radius, int* solves = nullptr);
 
  private:
-  void factorize(const std::vector<char>& contact);
+  /// Writes ŵ D_Z into the diagonal and refreshes the preconditioner when Z changed.
+  void set_contact(const std::vector<char>& contact);
   /// t ← ρ + min(ρmax − ρ, step_i) for one progression.
   Eigen::VectorXd progression_target(const Eigen::VectorXd& radius, double step) const;
 
@@ -58,9 +62,9 @@ class RadiusSolver {
   Eigen::SparseMatrix<double> matrix_;       ///< λL + wI + ŵ D_Z, its diagonal rewritten per Z
   std::vector<double*> diagonal_;            ///< pointers into matrix_'s diagonal
   std::vector<double> base_diagonal_;        ///< λ deg_i + w
-  std::vector<char> factorized_contact_;     ///< Z of the current factorisation
-  bool factorized_ = false;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  std::vector<char> contact_;                ///< Z of the current system
+  bool ready_ = false;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver_;
 };
 
 /// ρ0 ([C]): distance from S to the vertex, or the mean of the corners' distances.

@@ -10,13 +10,13 @@ void SphereTerms::set(const std::vector<Sphere>& spheres) {
   }
 }
 
-ClusterStats cluster_stats(const VmasInput& in, const Index* members, std::size_t count, const Sphere& s,
-                           double lambda) {
+ClusterStats cluster_stats(const VmasInput& in, const std::vector<PackedQuadric>& quadrics, const Index* members,
+                           std::size_t count, const Sphere& s, double lambda) {
   ClusterStats st;
   const auto m = monomials(s);
   for (std::size_t i = 0; i < count; ++i) {
     const Index v = members[i];
-    const double e = vertex_energy(in.quadrics[v], in.points[v], lambda * in.areas[v], m.data());
+    const double e = vertex_energy(quadrics[v], in.points[v], lambda * in.areas[v], m.data());
     st.energy += e;
     st.area += in.areas[v];
     if (e > st.split_energy) {
@@ -26,6 +26,13 @@ ClusterStats cluster_stats(const VmasInput& in, const Index* members, std::size_
   }
   st.error = st.area > 0 ? st.energy / st.area : 0.0;
   return st;
+}
+
+std::vector<PackedQuadric> vertex_normal_quadrics(const VmasInput& in) {
+  std::vector<PackedQuadric> out(in.size());
+  for (Index v = 0; v < in.size(); ++v)
+    out[v] = PackedQuadric::from(Quadric::plane(in.points[v], in.normals[v], in.areas[v]));
+  return out;
 }
 
 }  // namespace medax::vmas

@@ -44,8 +44,18 @@ struct ClusterStats {
   double split_energy = -1;
 };
 
-/// Statistics of one cluster (members in ascending order) against its sphere.
-ClusterStats cluster_stats(const VmasInput& in, const Index* members, std::size_t count, const Sphere& s,
-                           double lambda);
+/// Statistics of one cluster (members in ascending order) against its sphere, with the Q_v of
+/// `quadrics` (the input's, or vertex_normal_quadrics()).
+ClusterStats cluster_stats(const VmasInput& in, const std::vector<PackedQuadric>& quadrics, const Index* members,
+                           std::size_t count, const Sphere& s, double lambda);
+
+/// Which SQEM term the partition and the cluster errors use (eq. 8).
+enum class PartitionSqem {
+  Diffused,      ///< Q_v of eq. 7: the planes of v's faces, each weighted A(t)/3 (the paper, CGoGN)
+  VertexNormal,  ///< A(v)·((v − q)·n_v − r)²: one plane, v's normal (the CGAL port)
+};
+
+/// The VertexNormal quadrics, per vertex.
+std::vector<PackedQuadric> vertex_normal_quadrics(const VmasInput& in);
 
 }  // namespace medax::vmas

@@ -63,7 +63,9 @@ __attribute__((noinline)) void candidates(double px, double py, double pz, doubl
 /// The spheres packed for the kernels above, with the pruning margin.
 class Searcher {
  public:
-  Searcher(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda) : in_(in), lambda_(lambda) {
+  Searcher(const VmasInput& in, const std::vector<PackedQuadric>& quadrics, const std::vector<Sphere>& spheres,
+           double lambda)
+      : in_(in), quadrics_(quadrics), lambda_(lambda) {
     terms_.set(spheres);
     for (int i = 0; i < 14; ++i) columns_[i] = terms_.m[i].data();
   }
@@ -72,7 +74,7 @@ class Searcher {
   /// E_v of sphere j.
   double energy(Index v, std::size_t j) const {
     const Vec3& p = in_.points[v];
-    return energy_at(in_.quadrics[v], p.x(), p.y(), p.z(), weight(v), columns_, j);
+    return energy_at(quadrics_[v], p.x(), p.y(), p.z(), weight(v), columns_, j);
   }
 
   /// The argmin over every sphere, lowest index on ties. `guess` only prunes: spheres that
@@ -97,7 +99,7 @@ class Searcher {
       }
       return std::isfinite(best_e) ? best : guess;
     }
-    energies(in_.quadrics[v], p.x(), p.y(), p.z(), w, columns_, count, scratch.data());
+    energies(quadrics_[v], p.x(), p.y(), p.z(), w, columns_, count, scratch.data());
     double best_e = scratch[0];
     for (std::size_t j = 1; j < count; ++j)
       if (scratch[j] < best_e) best_e = scratch[j], best = j;
@@ -139,6 +141,7 @@ class Searcher {
   }
 
   const VmasInput& in_;
+  const std::vector<PackedQuadric>& quadrics_;
   double lambda_;
   SphereTerms terms_;
   const double* columns_[14];
@@ -147,14 +150,15 @@ class Searcher {
 }  // namespace
 
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
-                     std::vector<int>& cluster_of, const std::vector<int>* hint) {
+                     std::vector<int>& cluster_of, const std::vector<int>* hint,
+                     const std::vector<PackedQuadric>* quadrics) {
   const std::size_t n = in.size(), count = spheres.size();
   std::vector<int> result(n, -1);
   if (count == 0) {
     cluster_of = std::move(result);
     return;
   }
-  const Searcher all(in, spheres, lambda);
+  const Searcher all(in, quadrics ? *quadrics : in.quadrics, spheres, lambda);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<double> scratch;
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
@@ -169,17 +173,19 @@ void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, do
 }
 
 void reassign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
-                       const std::vector<char>& moved, std::vector<int>& cluster_of) {
+                       const std::vector<char>& moved, std::vector<int>& cluster_of,
+                       const std::vector<PackedQuadric>* quadrics) {
   const std::size_t n = in.size(), count = spheres.size();
   if (count == 0 || cluster_of.size() != n || moved.size() != count) {
-    assign_vertices(in, spheres, lambda, cluster_of, cluster_of.size() == n ? &cluster_of : nullptr);
+    assign_vertices(in, spheres, lambda, cluster_of, cluster_of.size() == n ? &cluster_of : nullptr, quadrics);
     return;
   }
   std::vector<std::size_t> subset;
   std::vector<Sphere> subset_spheres;
   for (std::size_t j = 0; j < count; ++j)
     if (moved[j]) subset.push_back(j), subset_spheres.push_back(spheres[j]);
-  const Searcher all(in, spheres, lambda), packed(in, subset_spheres, lambda);
+  const auto& q = quadrics ? *quadrics : in.quadrics;
+  const Searcher all(in, q, spheres, lambda), packed(in, q, subset_spheres, lambda);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& range) {
     std::vector<double> scratch;
     for (std::size_t v = range.begin(); v != range.end(); ++v) {

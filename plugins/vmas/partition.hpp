@@ -13,9 +13,11 @@ namespace medax::vmas {
 /// cluster_of[v] = argmin_j E_v(m_j), or −1 for inactive vertices (or when there is no sphere).
 /// `hint` (optional, e.g. the previous partition; may be stale or out of range) only speeds
 /// the search up: spheres that provably cannot beat the hinted one are not evaluated. The result
-/// is the same with any hint or none. `cluster_of` may be `hint` itself.
+/// is the same with any hint or none. `cluster_of` may be `hint` itself. `quadrics`: the Q_v of
+/// eq. 8 (nullptr: the input's, eq. 7; or vertex_normal_quadrics()).
 void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
-                     std::vector<int>& cluster_of, const std::vector<int>* hint = nullptr);
+                     std::vector<int>& cluster_of, const std::vector<int>* hint = nullptr,
+                     const std::vector<PackedQuadric>* quadrics = nullptr);
 
 /// The same partition as assign_vertices, updated instead of recomputed. `cluster_of` must be
 /// the exact partition against `spheres` except those flagged in `moved` (changed or added since;
@@ -23,7 +25,8 @@ void assign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, do
 /// argmin among the unmoved spheres, so only the moved ones are tested against it: after a local
 /// change the cost is O(N·|moved|) cheap bound tests instead of a search over all spheres.
 void reassign_vertices(const VmasInput& in, const std::vector<Sphere>& spheres, double lambda,
-                       const std::vector<char>& moved, std::vector<int>& cluster_of);
+                       const std::vector<char>& moved, std::vector<int>& cluster_of,
+                       const std::vector<PackedQuadric>* quadrics = nullptr);
 
 /// The clusters as lists: members of sphere i are members[offsets[i] .. offsets[i+1]), ascending.
 struct Clusters {

@@ -36,14 +36,27 @@ VmasSolver::VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions optio
   if (input_->vertex_balls.empty())
     throw std::invalid_argument("the input was prepared without shrinking balls (InputOptions)");
   if (options_.min_cluster_size < 1) options_.min_cluster_size = 1;
-  // The first sphere: the largest shrinking ball (the authors' code; notes §2.8).
+  if (options_.partition_sqem == PartitionSqem::VertexNormal) normal_quadrics_ = vertex_normal_quadrics(*input_);
+  push(initial_sphere());
+  cluster_of_.assign(input_->size(), -1);
+}
+
+Sphere VmasSolver::initial_sphere() const {
+  const VmasInput& in = *input_;
+  if (options_.initial_sphere == InitialSphere::BoxCorner) {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    for (Index v = 0; v < in.size(); ++v)
+      if (in.active(v)) lo = lo.cwiseMin(in.points[v]);
+    if (!lo.allFinite()) throw std::runtime_error("the input has no vertex used by a face or sample");
+    return {lo, in.scale};
+  }
+  // The largest shrinking ball (the authors' code; notes §2.8).
   Index best = 0;
   double best_r = -1;
-  for (Index v = 0; v < input_->size(); ++v)
-    if (input_->active(v) && input_->vertex_balls[v].radius > best_r) best_r = input_->vertex_balls[v].radius, best = v;
+  for (Index v = 0; v < in.size(); ++v)
+    if (in.active(v) && in.vertex_balls[v].radius > best_r) best_r = in.vertex_balls[v].radius, best = v;
   if (!(best_r > 0)) throw std::runtime_error("no shrinking ball could be computed on this input");
-  push(input_->vertex_balls[best]);
-  cluster_of_.assign(input_->size(), -1);
+  return in.vertex_balls[best];
 }
 
 SphereId VmasSolver::push(const Sphere& s) {
@@ -72,7 +85,7 @@ void VmasSolver::erase_sphere(std::size_t i) {
 
 std::size_t VmasSolver::partition() {
   const std::vector<int> before = cluster_of_;
-  reassign_vertices(*input_, spheres_, options_.lambda_partition, moved_, cluster_of_);
+  reassign_vertices(*input_, spheres_, options_.lambda_partition, moved_, cluster_of_, &partition_quadrics());
   std::fill(moved_.begin(), moved_.end(), 0);
   for (std::size_t v = 0; v < cluster_of_.size(); ++v)
     if (before[v] != cluster_of_[v]) {
@@ -96,8 +109,13 @@ void VmasSolver::compute_stats() {
   const std::size_t n = clusters_.count();
   stats_.assign(n, ClusterStats{});
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    stats_[i] = cluster_stats(*input_, clusters_.begin(i), clusters_.size(i), spheres_[i], options_.lambda_partition);
+    stats_[i] = cluster_stats(*input_, partition_quadrics(), clusters_.begin(i), clusters_.size(i), spheres_[i],
+                              options_.lambda_partition);
   });
+}
+
+const std::vector<PackedQuadric>& VmasSolver::partition_quadrics() const {
+  return options_.partition_sqem == PartitionSqem::VertexNormal ? normal_quadrics_ : input_->quadrics;
 }
 
 void VmasSolver::correct_all() {
@@ -111,6 +129,7 @@ void VmasSolver::update_spheres() {
   UpdateOptions uo;
   uo.lambda = options_.lambda_update;
   uo.rows = options_.sqem_rows;
+  uo.steps = options_.gn_steps;
   uo.max_iterations = options_.gn_max_iterations;
   uo.tolerance = options_.gn_tolerance * in.scale;
   // The update of a sphere is a function of its cluster and its start. In the local scope a
@@ -181,6 +200,9 @@ IterationReport VmasSolver::step(bool allow_split) {
   if (allow_split && !rep.stop && !target_met && (rep.converged || (iteration_ - 1) % period == 0)) {
     Timer t(times_.splits);
     rep.splits = split_round();
+    // The CGoGN code tests the stop after the round: converged and now at the target ends here.
+    if (options_.stop_test == StopTest::AfterSplit && count_mode && rep.converged)
+      rep.stop = spheres_.size() >= options_.target_spheres;
   }
   rep.spheres = spheres_.size();
   last_ = rep;

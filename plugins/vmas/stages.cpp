@@ -146,6 +146,9 @@ void VmasStage::declare(ParamBinder& p) {
       .in_unit("scale²");
   p.add("lambda_partition", o.lambda_partition, "λ of the partition and cluster errors (eq. 8)").at_least(0);
   p.add("lambda_update", o.lambda_update, "λ of the sphere update (eq. 11)").at_least(0);
+  p.add("partition_sqem", o.partition_sqem, kPartitionSqems,
+        "SQEM term of the partition and cluster errors: the diffused quadric of eq. 7 (the paper), or one plane "
+        "through the vertex with its normal, weighted by A(v) (the CGAL port)");
   p.add("sqem_row_mode", o.sqem_rows, kSqemRows,
         "Update energy: the paper's sum of plane quadrics with Euclidean weight λ, or the authors' code (one "
         "summed SQEM row per vertex, Euclidean weight λ²)");
@@ -163,6 +166,15 @@ void VmasStage::declare(ParamBinder& p) {
   p.add("min_cluster_size", o.min_cluster_size, "Spheres whose cluster has fewer vertices are deleted").at_least(1);
   p.add("gn_max_iters", o.gn_max_iterations, "Gauss-Newton iterations per update").at_least(1);
   p.add("gn_tol", o.gn_tolerance, "Gauss-Newton stops when the step is shorter").at_least(0).in_unit("scale");
+  p.add("gn_steps", o.gn_steps, kGaussNewtonSteps,
+        "Gauss-Newton steps: guarded (a step that raises the energy or makes r <= 0 is damped and retried), or "
+        "raw (every step taken, as the authors' code)");
+  p.add("stop_test", o.stop_test, kStopTests,
+        "When the count mode stops: converged at the target before a split round (the paper), or also right after "
+        "a split round on convergence that reaches it, its new spheres unoptimised (the CGoGN code)");
+  p.add("initial_sphere", o.initial_sphere, kInitialSpheres,
+        "First sphere: the largest per-vertex shrinking ball (the CGoGN code), or the bbox min corner with radius "
+        "= scale (the CGAL port's ((0,0,0), 1))");
   p.add("knn_k", in.knn, "k of the kNN graph and diffused quadrics (point-cloud input)").at_least(1);
   p.add("sb_initial_radius", in.sb_initial_radius, "Initial shrinking-ball radius r0")
       .at_least(0)

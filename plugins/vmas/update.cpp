@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 
 #include <cmath>
+#include <limits>
 
 namespace medax::vmas {
 
@@ -72,9 +73,11 @@ double update_energy(const VmasInput& in, const Index* members, std::size_t coun
   return Objective(in, members, count, options).at(s.s(), false).energy;
 }
 
-UpdateResult update_sphere(const VmasInput& in, const Index* members, std::size_t count, const Sphere& start,
-                           const UpdateOptions& options) {
-  const Objective f(in, members, count, options);
+namespace {
+
+/// Levenberg-guarded Gauss–Newton: a step that raises the energy or makes r ≤ 0 is retried with
+/// more damping, so the energy never increases.
+UpdateResult guarded_steps(const Objective& f, const Sphere& start, const UpdateOptions& options) {
   Vec4 s = start.s();
   System cur = f.at(s, true);
   UpdateResult result;
@@ -116,6 +119,41 @@ UpdateResult update_sphere(const VmasInput& in, const Index* members, std::size_
   result.sphere = Sphere::from(s);
   result.energy_after = cur.energy;
   return result;
+}
+
+/// Plain Gauss–Newton, as the authors' code: s += Δ every iteration, stop when |Δ| < tolerance.
+/// Only a singular system (or a non-finite step) stops it early, keeping the last sphere.
+UpdateResult raw_steps(const Objective& f, const Sphere& start, const UpdateOptions& options) {
+  Vec4 s = start.s();
+  System cur = f.at(s, true);
+  UpdateResult result;
+  result.energy_before = cur.energy;
+  for (int it = 0; it < options.max_iterations; ++it) {
+    ++result.iterations;
+    const Eigen::LDLT<Mat4> ldlt(cur.H);
+    const Vec4 delta = ldlt.solve(-cur.g);
+    if (ldlt.info() != Eigen::Success || !delta.allFinite()) {
+      result.converged = true;  // nothing more this solve can do
+      break;
+    }
+    s += delta;
+    cur = f.at(s, true);
+    if (delta.norm() < options.tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  result.sphere = Sphere::from(s);
+  result.energy_after = cur.energy;
+  return result;
+}
+
+}  // namespace
+
+UpdateResult update_sphere(const VmasInput& in, const Index* members, std::size_t count, const Sphere& start,
+                           const UpdateOptions& options) {
+  const Objective f(in, members, count, options);
+  return options.steps == GaussNewtonSteps::Raw ? raw_steps(f, start, options) : guarded_steps(f, start, options);
 }
 
 }  // namespace medax::vmas

@@ -4,9 +4,10 @@
 // exact): the cluster's quadric is summed once, and each iteration makes one pass over the
 // cluster for the Euclidean part, accumulating the 4×4 system directly.
 //
-// Guards (notes [R]): a step is accepted only if it does not increase the energy and keeps
-// r > 0; otherwise Levenberg damping μ·diag(H) is raised and the step retried. So the energy
-// of a cluster never increases across an update.
+// Steps (GaussNewtonSteps): `Guarded` (notes [R]) accepts a step only if it does not increase
+// the energy and keeps r > 0, otherwise raises Levenberg damping μ·diag(H) and retries, so the
+// energy of a cluster never increases across an update; `Raw` takes the plain Gauss–Newton step
+// every time, as both of the authors' implementations do.
 #include "input.hpp"
 
 namespace medax::vmas {
@@ -18,9 +19,16 @@ enum class SqemRows {
                ///< Euclidean rows scaled by λ, so the effective weight is λ²
 };
 
+/// How the Gauss–Newton iteration moves (notes §2.4).
+enum class GaussNewtonSteps {
+  Guarded,  ///< energy test + Levenberg damping, r > 0 (ours)
+  Raw,      ///< s += Δ with Δ = −H⁻¹g, no test (the authors' CGoGN code and CGAL port)
+};
+
 struct UpdateOptions {
   double lambda = 0.2;  ///< λ_update
   SqemRows rows = SqemRows::Paper;
+  GaussNewtonSteps steps = GaussNewtonSteps::Guarded;
   int max_iterations = 10;
   double tolerance = 1e-6;  ///< stop when |Δs| is below this (absolute length)
 };

@@ -49,6 +49,20 @@ enum class UpdateScope {
   Full,   ///< every sphere, every iteration
 };
 
+/// When the stop test runs in an iteration (notes §2.10).
+enum class StopTest {
+  BeforeSplit,  ///< converged with the target met, before any split round (the paper, the CGAL port)
+  AfterSplit,   ///< after the split round (the CGoGN code): a round on convergence that reaches the
+                ///< target ends the run, its new spheres as split (unoptimised)
+};
+
+/// The first sphere (notes §2.8).
+enum class InitialSphere {
+  LargestBall,  ///< the largest per-vertex shrinking ball (the CGoGN code)
+  BoxCorner,    ///< centre at the bounding box's min corner, radius = scale (the CGAL port's
+                ///< ((0,0,0), 1) on a unit box)
+};
+
 /// The name of each choice, as the `vmas` stage's parameters and the log spell it.
 inline const std::vector<std::pair<std::string, StopMode>> kStopModes{{"count", StopMode::Count},
                                                                       {"error", StopMode::Error}};
@@ -60,6 +74,14 @@ inline const std::vector<std::pair<std::string, Correction>> kCorrections{{"alwa
                                                                           {"off", Correction::Off}};
 inline const std::vector<std::pair<std::string, UpdateScope>> kUpdateScopes{{"local", UpdateScope::Local},
                                                                             {"full", UpdateScope::Full}};
+inline const std::vector<std::pair<std::string, PartitionSqem>> kPartitionSqems{
+    {"diffused", PartitionSqem::Diffused}, {"vertex_normal", PartitionSqem::VertexNormal}};
+inline const std::vector<std::pair<std::string, GaussNewtonSteps>> kGaussNewtonSteps{
+    {"guarded", GaussNewtonSteps::Guarded}, {"raw", GaussNewtonSteps::Raw}};
+inline const std::vector<std::pair<std::string, StopTest>> kStopTests{{"before_split", StopTest::BeforeSplit},
+                                                                      {"after_split", StopTest::AfterSplit}};
+inline const std::vector<std::pair<std::string, InitialSphere>> kInitialSpheres{
+    {"largest_ball", InitialSphere::LargestBall}, {"box_corner", InitialSphere::BoxCorner}};
 
 /// The vertex columns of VmasSolver::complex(): the cluster error E(C) (eq. 12, an area-weighted
 /// mean of squared distances: length²), the cluster area A(C), and the stable sphere id.
@@ -70,6 +92,7 @@ inline const Property<int> kVmasId{Element::Vertex, "vmas_id"};
 struct VmasOptions {
   double lambda_partition = 0.2;  ///< λ in eq. 8 (partition and cluster errors)
   double lambda_update = 0.2;     ///< λ in eq. 11 (the update)
+  PartitionSqem partition_sqem = PartitionSqem::Diffused;  ///< the SQEM term of eq. 8
   SqemRows sqem_rows = SqemRows::Paper;
   StopMode stop_mode = StopMode::Count;
   std::size_t target_spheres = 100;  ///< count mode
@@ -81,6 +104,9 @@ struct VmasOptions {
   std::size_t min_cluster_size = 4;  ///< spheres whose cluster is smaller are deleted
   int gn_max_iterations = 10;
   double gn_tolerance = 1e-6;        ///< × scale
+  GaussNewtonSteps gn_steps = GaussNewtonSteps::Guarded;
+  StopTest stop_test = StopTest::BeforeSplit;
+  InitialSphere initial_sphere = InitialSphere::LargestBall;
   Correction correction = Correction::Always;
   UpdateScope update_scope = UpdateScope::Local;
   int max_iterations = 1000;
@@ -125,7 +151,7 @@ struct PhaseTimes {
 
 class VmasSolver {
  public:
-  /// Starts from one sphere: the largest shrinking ball of the input (notes §2.8).
+  /// Starts from one sphere, as `initial_sphere` says (notes §2.8).
   explicit VmasSolver(std::shared_ptr<const VmasInput> input, VmasOptions options = {});
 
   /// One iteration: partition (+ cull), update (+ correction), errors, and a split round when
@@ -171,8 +197,11 @@ class VmasSolver {
 
  private:
   IterationReport step(bool allow_split);
+  Sphere initial_sphere() const;
   std::size_t partition();  ///< assign + cull; returns the number culled
   void compute_stats();
+  /// The Q_v of the partition and the cluster errors (partition_sqem).
+  const std::vector<PackedQuadric>& partition_quadrics() const;
   void update_spheres();  ///< Gauss–Newton (+ correction) of the spheres due, by update_scope
   void correct_all();
   /// A split round (notes §2.9): new spheres at the max-error vertices of the clusters chosen by
@@ -187,6 +216,7 @@ class VmasSolver {
 
   std::shared_ptr<const VmasInput> input_;
   VmasOptions options_;
+  std::vector<PackedQuadric> normal_quadrics_;  ///< PartitionSqem::VertexNormal only
   std::vector<Sphere> spheres_;  ///< local frame
   std::vector<SphereId> ids_;
   SphereId next_id_ = 0;

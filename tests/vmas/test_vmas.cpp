@@ -131,18 +131,30 @@ void run_dual(MedialComplex& mc, const Shape& shape, const std::map<std::string,
 TEST_CASE("vmas sphere: the first fit is the sphere itself") {
   const SurfaceMesh mesh = testing::make_sphere(1.0, 4);  // 2562 vertices
   REQUIRE(mesh.vertices.size() >= 2000);
-  for (const Correction c : {Correction::Off, Correction::Always}) {
-    VmasOptions o = count_options(1);
-    o.correction = c;
-    VmasSolver solver(VmasInput::from_mesh(mesh), o);
-    solver.iterate();
-    REQUIRE(solver.size() == 1);
-    const SphereInfo s = solver.spheres()[0];
-    INFO("correction " << (c == Correction::Off ? "off" : "always") << ": centre " << s.centre.transpose()
-                       << " radius " << s.radius);
-    CHECK(s.centre.norm() < 2e-3);
-    CHECK(std::abs(s.radius - 1.0) < 2e-3);
-  }
+  // From either first sphere (the largest shrinking ball, or the CGAL port's box corner with
+  // radius = scale), with either Gauss-Newton steps, one iteration fits the sphere.
+  for (const Correction c : {Correction::Off, Correction::Always})
+    for (const GaussNewtonSteps steps : {GaussNewtonSteps::Guarded, GaussNewtonSteps::Raw})
+      for (const InitialSphere start : {InitialSphere::LargestBall, InitialSphere::BoxCorner}) {
+        VmasOptions o = count_options(1);
+        o.correction = c;
+        o.gn_steps = steps;
+        o.initial_sphere = start;
+        VmasSolver solver(VmasInput::from_mesh(mesh), o);
+        if (start == InitialSphere::BoxCorner) {
+          const SphereInfo s0 = solver.spheres()[0];
+          CHECK((s0.centre - Vec3::Constant(-1.0)).norm() < 1e-9);
+          CHECK(std::abs(s0.radius - 2.0) < 1e-9);
+        }
+        solver.iterate();
+        REQUIRE(solver.size() == 1);
+        const SphereInfo s = solver.spheres()[0];
+        INFO("correction " << choice_name(kCorrections, c) << ", steps " << choice_name(kGaussNewtonSteps, steps)
+                           << ", start " << choice_name(kInitialSpheres, start) << ": centre " << s.centre.transpose()
+                           << " radius " << s.radius);
+        CHECK(s.centre.norm() < 2e-3);
+        CHECK(std::abs(s.radius - 1.0) < 2e-3);
+      }
 }
 
 TEST_CASE("vmas capsule: centres on the axis and the skeleton is a path") {
@@ -270,6 +282,47 @@ TEST_CASE("vmas partition is the argmin of eq 8 and clusters have at least 4 ver
   CHECK(hinted == cluster_of);
 }
 
+TEST_CASE("vmas partition with the CGAL port's vertex-normal SQEM is the argmin of its energy") {
+  // partition_sqem: vertex_normal: E_v = A(v)·((v − q)·n_v − r)² + λ·A(v)·(|v − q| − r)².
+  const SurfaceMesh mesh = make_blob();
+  VmasOptions o = count_options(20);
+  o.partition_sqem = PartitionSqem::VertexNormal;
+  VmasSolver solver(VmasInput::from_mesh(mesh), o);
+  solver.run();
+  CHECK(solver.size() == 20);
+  const VmasInput& in = solver.input();
+  const std::vector<Sphere> spheres = local_spheres(solver);
+  const auto energy = [&](Index v, const Sphere& s) {
+    const double plane = (in.points[v] - s.centre).dot(in.normals[v]) - s.radius;
+    const double eucl = (in.points[v] - s.centre).norm() - s.radius;
+    return in.areas[v] * (plane * plane + 0.2 * eucl * eucl);
+  };
+  // The cluster errors (eq. 12) use it: against the current spheres, over the last partition.
+  std::vector<double> sum(spheres.size(), 0.0), area(spheres.size(), 0.0);
+  for (Index v = 0; v < in.size(); ++v) {
+    const int c = solver.assignment()[v];
+    REQUIRE(c >= 0);
+    sum[static_cast<std::size_t>(c)] += energy(v, spheres[static_cast<std::size_t>(c)]);
+    area[static_cast<std::size_t>(c)] += in.areas[v];
+  }
+  const std::vector<SphereInfo> info = solver.spheres();
+  for (std::size_t i = 0; i < spheres.size(); ++i) CHECK(info[i].error == Approx(sum[i] / area[i]).epsilon(1e-9));
+  // The partition is its argmin.
+  const std::vector<PackedQuadric> quadrics = vertex_normal_quadrics(in);
+  std::vector<int> normal, diffused;
+  assign_vertices(in, spheres, 0.2, normal, nullptr, &quadrics);
+  assign_vertices(in, spheres, 0.2, diffused);
+  std::size_t wrong = 0, differs_from_diffused = 0;
+  for (Index v = 0; v < in.size(); ++v) {
+    const double chosen = energy(v, spheres[static_cast<std::size_t>(normal[v])]);
+    for (const Sphere& s : spheres)
+      if (energy(v, s) < chosen * (1 - 1e-9) - 1e-15) ++wrong;
+    differs_from_diffused += normal[v] != diffused[v];
+  }
+  CHECK(wrong == 0);
+  CHECK(differs_from_diffused > 0);  // the two energies are not the same partition
+}
+
 TEST_CASE("vmas incremental partition equals the full argmin") {
   const SurfaceMesh mesh = make_blob();
   VmasSolver solver(VmasInput::from_mesh(mesh), count_options(20));
@@ -393,6 +446,31 @@ TEST_CASE("vmas count mode stops at the target") {
     CHECK(solver.last_report().converged);
     CHECK(solver.iterations() < solver.options().max_iterations);
   }
+}
+
+TEST_CASE("vmas stop_test after_split ends at the target, no later than before_split") {
+  // Both runs make the same decisions until the CGoGN code's test (after the split round) stops
+  // the after_split run: on a round made on convergence that reaches the target, its new
+  // spheres unoptimised.
+  bool stopped_on_a_split = false;
+  for (const std::size_t target : {std::size_t{10}, std::size_t{23}, std::size_t{31}}) {
+    VmasOptions o = count_options(target);
+    const VmasSolver before = solve(make_blob(), o);
+    o.stop_test = StopTest::AfterSplit;
+    const VmasSolver after = solve(make_blob(), o);
+    INFO("target " << target);
+    CHECK(after.size() == target);
+    CHECK(after.last_report().stop);
+    CHECK(after.last_report().converged);
+    CHECK(after.iterations() <= before.iterations());
+    if (after.last_report().splits > 0) {
+      stopped_on_a_split = true;
+      CHECK(after.iterations() < before.iterations());
+    } else {
+      CHECK(after.iterations() == before.iterations());
+    }
+  }
+  CHECK(stopped_on_a_split);
 }
 
 TEST_CASE("vmas stops when a too-coarse mesh cannot hold the target") {

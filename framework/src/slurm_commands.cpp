@@ -133,6 +133,11 @@ std::string command_failure(const std::string& program, const CommandResult& res
       output.find("munge") != std::string::npos || output.find("Could not establish") != std::string::npos)
     hint = "; the Slurm controller does not answer: is the cluster up (`sinfo`)? Does SLURM_CONF name its "
            "slurm.conf? For the single-node test cluster: scripts/slurm-local.sh start, then the export line it prints";
+  if (output.find("node configuration is not available") != std::string::npos ||
+      output.find("Memory specification") != std::string::npos || output.find("--time") != std::string::npos ||
+      output.find("partition") != std::string::npos)
+    hint = "; the partition cannot give what the array asks: lower --mem (default: the sweep's `limits: memory_mib`), "
+           "--cpus or --time (default: `limits: timeout` + 1 min), or choose another --partition (`sinfo` lists them)";
   return fmt::format("{} failed (exit {}): {}{}", program, result.exit_code, output, hint);
 }
 

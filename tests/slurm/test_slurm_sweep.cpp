@@ -164,6 +164,15 @@ TEST_CASE("a sweep on Slurm gives the local backend's results, job folders and s
     CHECK(job_summaries(cluster) == job_summaries(local));
   }
 
+  // A request the cluster cannot meet: sbatch's error and what to change.
+  {
+    const auto refused = run_medax("run " + quoted(file) + " --backend slurm --partition nope --out " +
+                                       quoted(dir / "refused"), kPlugins, dir);
+    CHECK(refused.code == 1);
+    CHECK_THAT(refused.err, Catch::Contains("Invalid partition name specified"));
+    CHECK_THAT(refused.err, Catch::Contains("choose another --partition"));
+  }
+
   // A cluster that is down: sbatch's error and what to do.
   {
     slurm.stop();

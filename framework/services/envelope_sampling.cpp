@@ -255,21 +255,38 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
   return values;
 }
 
-/// 3. Every grid edge whose ends differ in sign crosses ∂E.
+/// The index of grid point `key` among `corners` at or after `from` (sorted keys), or
+/// corners.size() when it is not a corner. The +k neighbour of corners[from − 1] is usually at `from`.
+std::size_t corner_index(const std::vector<std::uint64_t>& corners, std::size_t from, std::uint64_t key) {
+  if (from < corners.size() && corners[from] == key) return from;
+  const auto it = std::lower_bound(corners.begin() + std::min(from, corners.size()), corners.end(), key);
+  return it != corners.end() && *it == key ? static_cast<std::size_t>(it - corners.begin()) : corners.size();
+}
+
+/// 3. Every grid edge whose ends differ in sign crosses ∂E. The edges of each corner towards +i,
+///    +j, +k are tested in parallel (a bit per axis), then listed in corner and axis order, the
+///    order of a sequential scan.
 std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values,
                                     const CancelPoll& poll) {
+  const auto neighbour = [&corners](std::size_t c, int axis) {
+    const auto [i, j, k] = unpack(corners[c]);
+    return corner_index(corners, c + 1, pack(i + (axis == 0), j + (axis == 1), k + (axis == 2)));
+  };
+  std::vector<std::uint8_t> crossing_axes(corners.size(), 0);
+  tbb::parallel_for(std::size_t{0}, corners.size(), [&](std::size_t c) {
+    poll.at(c);
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::size_t n = neighbour(c, axis);
+      if (n < corners.size() && (values[c].d >= 0) != (values[n].d >= 0)) crossing_axes[c] |= std::uint8_t(1 << axis);
+    }
+  });
   std::vector<Crossing> crossings;
   for (std::size_t c = 0; c < corners.size(); ++c) {
     poll.at(c);
-    const auto [i, j, k] = unpack(corners[c]);
     for (int axis = 0; axis < 3; ++axis) {
-      const std::uint64_t next = pack(i + (axis == 0), j + (axis == 1), k + (axis == 2));
-      const auto it = std::lower_bound(corners.begin(), corners.end(), next);
-      if (it == corners.end() || *it != next) continue;
-      const std::size_t n = static_cast<std::size_t>(it - corners.begin());
-      const bool out_c = values[c].d >= 0, out_n = values[n].d >= 0;
-      if (out_c == out_n) continue;
-      crossings.push_back(out_c ? Crossing{c, n} : Crossing{n, c});
+      if (!(crossing_axes[c] & (1 << axis))) continue;
+      const std::size_t n = neighbour(c, axis);
+      crossings.push_back(values[c].d >= 0 ? Crossing{c, n} : Crossing{n, c});
     }
   }
   return crossings;

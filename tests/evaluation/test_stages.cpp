@@ -224,6 +224,31 @@ TEST_CASE("reconstruction: a point cloud on a sphere against its exact medial sp
   CHECK(m.at("envelope_area") == Approx(4 * M_PI).epsilon(0.005));
 }
 
+TEST_CASE("reconstruction: the same metrics on 1 and 2 threads", "[reconstruction]") {
+  // A ring of cones and a band of slabs inside a torus: parallel loops over many primitives.
+  Shape shape;
+  shape.mesh = testing::make_torus(1.0, 0.3, 48, 16);
+  MedialComplex mc;
+  for (int i = 0; i < 24; ++i) {
+    const double a = i * M_PI / 12;
+    mc.add_vertex(Vec3(std::cos(a), std::sin(a), 0), 0.25 + 0.03 * std::sin(3 * a));
+    mc.add_vertex(Vec3(1.1 * std::cos(a), 1.1 * std::sin(a), 0.05), 0.18);
+  }
+  for (Index i = 0; i < 24; ++i) {
+    const Index j = (i + 1) % 24;
+    mc.add_edge(2 * i, 2 * j);
+    if (i % 2 == 0) mc.add_face(2 * i + 1, 2 * j + 1, 2 * j);
+  }
+  const auto on_threads = [&](int threads) {
+    Metrics m;
+    tbb::task_arena(threads).execute([&] { m = reconstruction(shape, mc, {{"surface_samples", 3000LL}}); });
+    return m;
+  };
+  const Metrics one = on_threads(1), two = on_threads(2);
+  CHECK(one.at("envelope_samples") > 1000);
+  CHECK(one == two);  // every value bit for bit
+}
+
 TEST_CASE("reconstruction: export_envelope writes the boundary points in the input's frame", "[reconstruction]") {
   Shape shape;
   shape.mesh = testing::make_sphere(1.0, 3);

@@ -82,31 +82,41 @@ double PrimitiveShape::signed_distance(const Vec3& x) const {
 
 bool PrimitiveShape::near(const Vec3& x, double margin) const { return impl_->box.exteriorDistance(x) <= margin; }
 
-Coverage coverage(const TargetMesh& target, const std::vector<Primitive>& primitives, const CoverageOptions& options) {
-  std::vector<const Primitive*> fitted;
-  for (const Primitive& p : primitives)
-    if (p.fitted) fitted.push_back(&p);
-  std::vector<std::unique_ptr<PrimitiveShape>> shapes(fitted.size());
-  tbb::parallel_for(std::size_t{0}, fitted.size(),
-                    [&](std::size_t k) { shapes[k] = std::make_unique<PrimitiveShape>(*fitted[k]); });
+std::vector<Index> covered_vertices(const TargetMesh& target, const Primitive& primitive,
+                                    const CoverageOptions& options) {
+  if (!primitive.fitted) return {};
+  const PrimitiveShape shape(primitive);
   const double delta = options.delta * target.scale();
   const std::vector<Vec3>& vertices = target.mesh().vertices;
-  Coverage result;
-  result.covered.assign(vertices.size(), 0);
+  std::vector<char> covered(vertices.size(), 0);
   tbb::parallel_for(std::size_t{0}, vertices.size(), [&](std::size_t v) {
-    for (const auto& shape : shapes) {
-      if (!shape->near(vertices[v], delta)) continue;
-      const double value = options.test == CoverageTest::Radial ? shape->radial(vertices[v])
-                                                                 : shape->signed_distance(vertices[v]);
-      if (value < delta) {
-        result.covered[v] = 1;
-        break;  // early exit: one covering primitive is enough
-      }
-    }
+    if (!shape.near(vertices[v], delta)) return;
+    const double value = options.test == CoverageTest::Radial ? shape.radial(vertices[v])
+                                                               : shape.signed_distance(vertices[v]);
+    covered[v] = value < delta;
   });
-  for (std::size_t v = 0; v < vertices.size(); ++v)
+  std::vector<Index> list;
+  for (std::size_t v = 0; v < covered.size(); ++v)
+    if (covered[v]) list.push_back(static_cast<Index>(v));
+  return list;
+}
+
+Coverage union_coverage(const TargetMesh& target, const std::vector<std::vector<Index>>& covered_lists) {
+  Coverage result;
+  result.covered.assign(target.mesh().vertices.size(), 0);
+  for (const std::vector<Index>& list : covered_lists)
+    for (Index v : list) result.covered[v] = 1;
+  // Summed in vertex order, so the energy does not depend on the order of the lists.
+  for (std::size_t v = 0; v < result.covered.size(); ++v)
     if (result.covered[v]) result.energy -= target.vertex_areas()[v];
   return result;
+}
+
+Coverage coverage(const TargetMesh& target, const std::vector<Primitive>& primitives, const CoverageOptions& options) {
+  std::vector<std::vector<Index>> lists(primitives.size());
+  tbb::parallel_for(std::size_t{0}, primitives.size(),
+                    [&](std::size_t k) { lists[k] = covered_vertices(target, primitives[k], options); });
+  return union_coverage(target, lists);
 }
 
 }  // namespace medax::msd

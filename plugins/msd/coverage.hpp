@@ -4,7 +4,8 @@
 // ℰ(x; T_P) follows Eq. 3: p = cp(x; P), ℰ = ‖x − p‖ − r(d), with r(d) the distance from p along
 // d = (x − p)/‖x − p‖ to T_P (the radial test; a consistent primitive is met once). The signed
 // distance to T_P (sign from the same radial test) is the other choice. Each primitive keeps its
-// own AABB tree; a vertex stops at the first primitive that covers it.
+// own AABB tree and tests only the vertices near its bounding box; the coverage of a diagram is
+// the union of its primitives' covered vertices, so a primitive whose fit is cached keeps its list.
 #include "primitive.hpp"
 #include "target_mesh.hpp"
 
@@ -47,8 +48,15 @@ struct Coverage {
   double energy = 0;          ///< E_cov = −Σ_covered A(v), in [−1, 0]
 };
 
-/// Coverage of S by the fitted primitives (unfitted ones are skipped). Parallel over S's vertices,
-/// deterministic.
+/// The vertices of S that one primitive covers (ℰ < δ), ascending; empty when it is not fitted.
+/// Parallel over S's vertices, deterministic.
+std::vector<Index> covered_vertices(const TargetMesh& target, const Primitive& primitive,
+                                    const CoverageOptions& options = {});
+
+/// The union of covered-vertex lists as a Coverage of S.
+Coverage union_coverage(const TargetMesh& target, const std::vector<std::vector<Index>>& covered_lists);
+
+/// Coverage of S by the fitted primitives (unfitted ones are skipped), deterministic.
 Coverage coverage(const TargetMesh& target, const std::vector<Primitive>& primitives, const CoverageOptions& options = {});
 
 }  // namespace medax::msd

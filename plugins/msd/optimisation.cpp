@@ -115,6 +115,8 @@ double centroid_energy(const std::vector<Vec3>& sites, const std::vector<RvdPiec
 struct EnergyEvaluator::Cache {
   struct Entry {
     Primitive primitive;
+    std::vector<Index> covered;   ///< S's vertices the primitive covers, once `has_coverage`
+    bool has_coverage = false;
     int last_used = 0;
   };
   std::map<ElementKey, Entry> entries;
@@ -139,7 +141,7 @@ std::vector<Primitive> EnergyEvaluator::fit(const std::vector<SkeletonElement>& 
     missing_keys.push_back(key);
   }
   std::vector<Primitive> fresh = fit_primitives(target_, missing, search_fit_options(options_));
-  for (std::size_t i = 0; i < fresh.size(); ++i) cache_->entries[missing_keys[i]] = {std::move(fresh[i]), now};
+  for (std::size_t i = 0; i < fresh.size(); ++i) cache_->entries[missing_keys[i]] = {std::move(fresh[i]), {}, false, now};
   fitted = missing.size();
   std::vector<Primitive> primitives;
   primitives.reserve(elements.size());
@@ -150,6 +152,23 @@ std::vector<Primitive> EnergyEvaluator::fit(const std::vector<SkeletonElement>& 
     primitives.back().element.ids = element.ids;  // same geometry, this skeleton's numbering
   }
   return primitives;
+}
+
+std::vector<std::vector<Index>> EnergyEvaluator::covered_lists(const std::vector<SkeletonElement>& elements) {
+  std::vector<Cache::Entry*> missing;
+  for (const SkeletonElement& element : elements) {
+    Cache::Entry& entry = cache_->entries.at(key_of(element));
+    if (!entry.has_coverage && std::find(missing.begin(), missing.end(), &entry) == missing.end())
+      missing.push_back(&entry);
+  }
+  tbb::parallel_for(std::size_t{0}, missing.size(), [&](std::size_t i) {
+    missing[i]->covered = covered_vertices(target_, missing[i]->primitive, options_.coverage);
+    missing[i]->has_coverage = true;
+  });
+  std::vector<std::vector<Index>> lists;
+  lists.reserve(elements.size());
+  for (const SkeletonElement& element : elements) lists.push_back(cache_->entries.at(key_of(element)).covered);
+  return lists;
 }
 
 void EnergyEvaluator::trim_cache(const Diagram& keep) {
@@ -189,7 +208,7 @@ Diagram EnergyEvaluator::evaluate(const std::vector<Vec3>& frozen, const std::ve
   diagram.primitives = fit(diagram.elements, times.fitted);
   times.seconds_fitting = seconds_since(start);
   start = Clock::now();
-  diagram.coverage = coverage(target_, diagram.primitives, options_.coverage);
+  diagram.coverage = union_coverage(target_, covered_lists(diagram.elements));
   Energy& e = diagram.energy;
   e.coverage = diagram.coverage.energy;
   const double unit = target_.scale();

@@ -119,7 +119,8 @@ std::vector<SkeletonElement> skeleton_elements(const Skeleton& skeleton);
 /// Projects points onto M as `projection` says.
 std::vector<Vec3> project_sites(const MedialMesh& medial, const std::vector<Vec3>& points, Projection projection);
 
-/// Evaluates Eq. 8 for site sets, keeping fits of unchanged elements between calls.
+/// Evaluates Eq. 8 for site sets, keeping fits of unchanged elements and the vertices they cover
+/// between calls.
 class EnergyEvaluator {
  public:
   EnergyEvaluator(const TargetMesh& target, const MedialMesh& medial, const SurfaceCrossing& crossing,
@@ -132,6 +133,8 @@ class EnergyEvaluator {
 
  private:
   std::vector<Primitive> fit(const std::vector<SkeletonElement>& elements, std::size_t& fitted);
+  /// Each element's covered vertices of S, computed once per cached fit.
+  std::vector<std::vector<Index>> covered_lists(const std::vector<SkeletonElement>& elements);
   struct Cache;
   const TargetMesh& target_;
   const MedialMesh& medial_;

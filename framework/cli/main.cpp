@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
   add_pipeline_options(run);
   medax::cli::add_run_options(*run, args);
   bool view_after_run = false;
-  run->add_flag("--view", view_after_run, "Write the run's viewer page when it ends and open it (`medax view`)");
+  run->add_flag("--view", view_after_run,
+                "When the run ends, write its viewer page (an experiment: results.html) and open it (`medax view`)");
 
   medax::cli::BenchArgs bench_args;
   auto* bench = app.add_subcommand("bench", "Time a pipeline: warm-up runs, then min and median per stage");

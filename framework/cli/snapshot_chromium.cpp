@@ -31,14 +31,22 @@ fs::path find_chromium() {
   for (const char* name : {"chromium", "chromium-browser", "google-chrome", "google-chrome-stable"})
     for (const fs::path& dir : dirs)
       if (::access((dir / name).c_str(), X_OK) == 0) return dir / name;
-  throw std::runtime_error("snapshot needs headless Chromium and none is on PATH; install Debian's chromium "
-                           "(apt-get install chromium) or set MEDAX_CHROMIUM to the browser's path");
+  throw std::runtime_error(
+      "snapshot needs headless Chromium and none is on PATH; install Debian's chromium "
+      "(apt-get install chromium) or set MEDAX_CHROMIUM to the browser's path");
 }
 
 std::vector<std::string> headless_flags(const fs::path& profile, int width, int height) {
-  std::vector<std::string> flags{"--headless", "--disable-gpu", "--enable-unsafe-swiftshader", "--hide-scrollbars",
-                                 "--no-first-run", "--no-default-browser-check", "--disable-extensions",
-                                 "--force-device-scale-factor=1", "--enable-logging=stderr", "--v=0",
+  std::vector<std::string> flags{"--headless",
+                                 "--disable-gpu",
+                                 "--enable-unsafe-swiftshader",
+                                 "--hide-scrollbars",
+                                 "--no-first-run",
+                                 "--no-default-browser-check",
+                                 "--disable-extensions",
+                                 "--force-device-scale-factor=1",
+                                 "--enable-logging=stderr",
+                                 "--v=0",
                                  "--user-data-dir=" + profile.string(),
                                  fmt::format("--window-size={},{}", width, height)};
   if (::geteuid() == 0) flags.push_back("--no-sandbox");

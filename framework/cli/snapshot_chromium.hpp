@@ -12,9 +12,9 @@ namespace medax::cli {
 std::filesystem::path find_chromium();
 
 struct BrowserRun {
-  int exit_code = -1;     ///< the browser's exit code; -1 when it was killed or did not start
+  int exit_code = -1;  ///< the browser's exit code; -1 when it was killed or did not start
   bool timed_out = false;
-  std::string log;        ///< what it wrote on stdout and stderr
+  std::string log;  ///< what it wrote on stdout and stderr
 };
 
 /// The flags every headless run needs: no sandbox as root (Chromium refuses to start there

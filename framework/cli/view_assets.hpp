@@ -5,8 +5,9 @@
 
 namespace medax::cli::viewer_assets {
 
-extern const std::string_view kHtml;  ///< viewer.html, with <!--medax:NAME--> slots
-extern const std::string_view kCss;   ///< viewer.css
-extern const std::string_view kJs;    ///< viewer.js
+extern const std::string_view kHtml;         ///< viewer.html, with <!--medax:NAME--> slots
+extern const std::string_view kCss;          ///< viewer.css
+extern const std::string_view kJs;           ///< viewer.js
+extern const std::string_view kResultsHtml;  ///< results.html (an experiment's page), <!--medax:NAME--> slots
 
 }  // namespace medax::cli::viewer_assets

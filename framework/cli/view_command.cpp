@@ -1,5 +1,6 @@
 #include "view_command.hpp"
 
+#include "view_experiment.hpp"
 #include "view_page.hpp"
 #include "view_scene.hpp"
 
@@ -52,10 +53,13 @@ fs::path write_page(const fs::path& run_folder, const fs::path& out) {
   return page;
 }
 
-int show(const fs::path& run_folder, const fs::path& out, bool open) {
-  const fs::path page = write_page(run_folder, out);
-  fmt::print("viewer: {}\n", fs::absolute(page).lexically_normal().string());
+void announce(const char* what, const fs::path& page, bool open) {
+  fmt::print("{}: {}\n", what, fs::absolute(page).lexically_normal().string());
   if (open && !open_in_browser(page)) fmt::print("open it in a web browser (no display to open it here)\n");
+}
+
+int show(const fs::path& run_folder, const fs::path& out, bool open) {
+  announce("viewer", write_page(run_folder, out), open);
   return 0;
 }
 
@@ -63,26 +67,37 @@ int show(const fs::path& run_folder, const fs::path& out, bool open) {
 
 CLI::App* add_view_command(CLI::App& app, ViewArgs& args) {
   auto* view = app.add_subcommand("view", "Write a run folder as one self-contained HTML page (3D viewer)");
-  view->add_option("RUN_FOLDER", args.run_folder, "A run folder (what `medax run` printed after 'results:')")
+  view->add_option("RUN_FOLDER", args.run_folder,
+                   "A run folder (what `medax run` printed after 'results:'), or an experiment's folder: then its "
+                   "results.html (table, plots, a picture and a viewer page per job)")
       ->required();
   view->add_option("--out,-o", args.out, "The page (default: <RUN_FOLDER>.html beside the folder)");
   view->add_flag("--no-open", args.no_open, "Only print the page's path; do not open a browser");
+  view->add_flag("--no-pictures", args.no_pictures, "Experiments: no picture of each job in results.html");
   return view;
 }
 
-int view(const ViewArgs& args) { return show(args.run_folder, args.out, !args.no_open); }
+int view(const ViewArgs& args) {
+  if (!is_experiment_folder(args.run_folder)) return show(args.run_folder, args.out, !args.no_open);
+  if (!args.out.empty()) {
+    fmt::print(stderr, "error: --out: {} is an experiment: its page is always its results.html\n",
+               args.run_folder.string());
+    return 2;
+  }
+  announce("results", write_results_page(args.run_folder, !args.no_pictures), !args.no_open);
+  return 0;
+}
 
 int view_finished_run(const RunArgs& args) {
-  if (is_sweep(args.pipeline)) {
-    fmt::print("--view shows one run: view a job of the experiment with `medax view <job folder>`\n");
-    return 0;
-  }
   fs::path folder = args.out;
-  if (folder.empty()) {  // the folder `run` chose: medax-runs/<pipeline>-<input stem>
-    const PipelineConfig config = load_pipeline(args.pipeline, Registry::global(), Overrides{args.input, args.settings});
+  if (folder.empty() && is_sweep(args.pipeline)) {  // the folder `run` chose: medax-runs/<name>
+    folder = fs::path("medax-runs") / load_sweep(args.pipeline).name;
+  } else if (folder.empty()) {  // medax-runs/<pipeline>-<input stem>
+    const PipelineConfig config =
+        load_pipeline(args.pipeline, Registry::global(), Overrides{args.input, args.settings});
     folder = fmt::format("medax-runs/{}-{}", config.name, config.input.stem().string());
   }
-  return show(folder, {}, true);
+  return view(ViewArgs{folder, {}, false, false});
 }
 
 }  // namespace medax::cli

@@ -16,6 +16,7 @@ struct ViewArgs {
   std::filesystem::path run_folder;
   std::filesystem::path out;  ///< default: <run folder>.html beside the folder
   bool no_open = false;       ///< only print the page's path
+  bool no_pictures = false;   ///< an experiment's results.html without a picture per job
 };
 
 /// What the page shows; the same settings as the page's URL query (framework/viewer/viewer.js).
@@ -24,7 +25,7 @@ struct SceneSettings {
   std::string field;   ///< empty: radius
   std::string layers;  ///< comma-separated layer ids; empty: the page's defaults
   double zoom = 1;
-  long pick = -1;      ///< a medial vertex whose sphere is shown
+  long pick = -1;  ///< a medial vertex whose sphere is shown
   bool legend = true;
 };
 

@@ -98,7 +98,8 @@ void read_row(PlyText& text, std::istringstream& words, Layout& layout, std::siz
       text.fail(fmt::format("element '{}' row {}: a list count of {} (0 to 1000 expected)", table.name, row, value));
     std::vector<std::uint32_t> corners(static_cast<std::size_t>(value));
     for (std::uint32_t& c : corners)
-      if (!(words >> c)) text.fail(fmt::format("element '{}' row {}: the list is shorter than its count", table.name, row));
+      if (!(words >> c))
+        text.fail(fmt::format("element '{}' row {}: the list is shorter than its count", table.name, row));
     for (std::size_t k = 2; k < corners.size(); ++k) {
       table.triangles.insert(table.triangles.end(), {corners[0], corners[k - 1], corners[k]});
       table.triangle_row.push_back(row);
@@ -115,8 +116,9 @@ std::map<std::string, PlyTable> read_ply_tables(const fs::path& path) {
   std::istringstream words;
   for (Layout& layout : layouts) {
     for (std::size_t row = 0; row < layout.table.rows; ++row) {
-      if (!text.line(words)) text.fail(fmt::format("the file ends inside element '{}' (row {} of {})",
-                                                   layout.table.name, row, layout.table.rows));
+      if (!text.line(words))
+        text.fail(
+            fmt::format("the file ends inside element '{}' (row {} of {})", layout.table.name, row, layout.table.rows));
       read_row(text, words, layout, row);
     }
     tables[layout.table.name] = std::move(layout.table);

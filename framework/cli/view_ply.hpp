@@ -19,8 +19,8 @@ struct PlyProperty {
 struct PlyTable {
   std::string name;
   std::size_t rows = 0;
-  std::vector<PlyProperty> properties;  ///< the scalar properties, in file order
-  std::vector<std::uint32_t> triangles;  ///< the list property fanned into triangles, 3 per
+  std::vector<PlyProperty> properties;    ///< the scalar properties, in file order
+  std::vector<std::uint32_t> triangles;   ///< the list property fanned into triangles, 3 per
   std::vector<std::size_t> triangle_row;  ///< the row each triangle came from
 
   const PlyProperty* find(const std::string& property) const;

@@ -31,10 +31,28 @@ std::vector<float> as_floats(const std::vector<double>& values) {
   return out;
 }
 
+void append(std::vector<float>& out, const Vec3& p) {
+  out.insert(out.end(), {float(p.x()), float(p.y()), float(p.z())});
+}
+
+void append(std::vector<std::uint32_t>& out, const Tri& f) {
+  out.insert(out.end(), {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+}
+
 const std::vector<double>& column(const PlyTable& table, const std::string& name, const fs::path& file) {
   const PlyProperty* p = table.find(name);
-  if (!p) throw std::runtime_error(fmt::format("{}: element '{}' has no '{}' property", file.string(), table.name, name));
+  if (!p)
+    throw std::runtime_error(fmt::format("{}: element '{}' has no '{}' property", file.string(), table.name, name));
   return p->values;
+}
+
+/// The x, y, z columns of `table` as points, x y z each.
+std::vector<float> points(const PlyTable& table, const fs::path& file) {
+  const auto &x = column(table, "x", file), &y = column(table, "y", file), &z = column(table, "z", file);
+  std::vector<float> out;
+  out.reserve(3 * table.rows);
+  for (std::size_t i = 0; i < table.rows; ++i) append(out, Vec3(x[i], y[i], z[i]));
+  return out;
 }
 
 /// Edges bounding no triangle, as vertex pairs, and their rows in the edge list.
@@ -74,8 +92,7 @@ void read_medial_ply(const fs::path& file, ViewScene& scene) {
   const auto vertex = tables.find("vertex");
   if (vertex == tables.end()) throw std::runtime_error(fmt::format("{}: no vertex element", file.string()));
   const PlyTable& v = vertex->second;
-  const auto &x = column(v, "x", file), &y = column(v, "y", file), &z = column(v, "z", file);
-  for (std::size_t i = 0; i < v.rows; ++i) scene.positions.insert(scene.positions.end(), {float(x[i]), float(y[i]), float(z[i])});
+  scene.positions = points(v, file);
   scene.radii = as_floats(column(v, "radius", file));
   add_fields(v, "vertex", all_rows(v.rows), scene);
   if (const auto face = tables.find("face"); face != tables.end()) {
@@ -95,10 +112,10 @@ void read_medial_ply(const fs::path& file, ViewScene& scene) {
 
 void read_medial_ma(const fs::path& file, ViewScene& scene) {
   const MedialComplex mc = read_ma(file);
-  for (const Vec3& c : mc.centres) scene.positions.insert(scene.positions.end(), {float(c.x()), float(c.y()), float(c.z())});
+  for (const Vec3& c : mc.centres) append(scene.positions, c);
   scene.radii = as_floats(mc.radii);
   scene.fields.push_back({"radius", "vertex", false, scene.radii});
-  for (const Tri& f : mc.faces) scene.triangles.insert(scene.triangles.end(), {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+  for (const Tri& f : mc.faces) append(scene.triangles, f);
   std::vector<std::uint32_t> pairs;
   for (const Segment& e : mc.edges) pairs.insert(pairs.end(), {std::uint32_t(e[0]), std::uint32_t(e[1])});
   std::vector<std::size_t> rows;
@@ -116,8 +133,8 @@ ViewSurface surface_layer(std::string id, std::string name, const SurfaceMesh& m
   ViewSurface s;
   s.id = std::move(id);
   s.name = std::move(name);
-  for (const Vec3& p : mesh.vertices) s.positions.insert(s.positions.end(), {float(p.x()), float(p.y()), float(p.z())});
-  for (const Tri& f : mesh.faces) s.triangles.insert(s.triangles.end(), {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
+  for (const Vec3& p : mesh.vertices) append(s.positions, p);
+  for (const Tri& f : mesh.faces) append(s.triangles, f);
   return s;
 }
 
@@ -130,15 +147,15 @@ ViewSurface ply_surface(const fs::path& file) {
   const PlyTable& v = vertex->second;
   ViewSurface s;
   s.id = s.name = file.filename().string();
-  const auto &x = column(v, "x", file), &y = column(v, "y", file), &z = column(v, "z", file);
-  for (std::size_t i = 0; i < v.rows; ++i) s.positions.insert(s.positions.end(), {float(x[i]), float(y[i]), float(z[i])});
+  s.positions = points(v, file);
   s.triangles = face->second.triangles;
   for (std::uint32_t i : s.triangles)
     if (i >= v.rows) throw std::runtime_error(fmt::format("vertex index {} is not in 0..{}", i, v.rows - 1));
   const PlyProperty *r = v.find("red"), *g = v.find("green"), *b = v.find("blue");
   if (r && g && b)
     for (std::size_t i = 0; i < v.rows; ++i)
-      s.colours.insert(s.colours.end(), {std::uint8_t(r->values[i]), std::uint8_t(g->values[i]), std::uint8_t(b->values[i])});
+      s.colours.insert(s.colours.end(),
+                       {std::uint8_t(r->values[i]), std::uint8_t(g->values[i]), std::uint8_t(b->values[i])});
   return s;
 }
 
@@ -220,17 +237,23 @@ std::string run_title(const fs::path& folder, ViewScene& scene) {
 ViewScene read_view_scene(const fs::path& run_folder) {
   const fs::path folder = fs::absolute(run_folder).lexically_normal();
   if (!fs::is_directory(folder))
-    throw std::runtime_error(fmt::format("{} is not a folder; give a run folder (what `medax run` printed after "
-                                         "'results:')", run_folder.string()));
+    throw std::runtime_error(
+        fmt::format("{} is not a folder; give a run folder (what `medax run` printed after "
+                    "'results:')",
+                    run_folder.string()));
   ViewScene scene;
   fs::path medial_file = folder / "medial.ply";
   if (!fs::exists(medial_file)) medial_file = folder / "medial.ma";
   if (!fs::exists(medial_file))
-    throw std::runtime_error(fmt::format("{} holds no medial.ply or medial.ma: give a run folder whose pipeline "
-                                         "writes `outputs: medial: [ply]`", run_folder.string()));
+    throw std::runtime_error(
+        fmt::format("{} holds no medial.ply or medial.ma: give a run folder whose pipeline "
+                    "writes `outputs: medial: [ply]`",
+                    run_folder.string()));
   scene.title = run_title(folder, scene);
-  if (medial_file.extension() == ".ply") read_medial_ply(medial_file, scene);
-  else read_medial_ma(medial_file, scene);
+  if (medial_file.extension() == ".ply")
+    read_medial_ply(medial_file, scene);
+  else
+    read_medial_ma(medial_file, scene);
   check_indices(scene, medial_file);
   add_input_surface(folder, scene);
   add_stage_surfaces(folder, medial_file, scene);

@@ -11,17 +11,17 @@ namespace medax::cli {
 /// A per-element column of the medial complex: a field (real) or a label (integer).
 struct ViewField {
   std::string name;
-  std::string element;        ///< "vertex", "edge" (on curves) or "face" (on triangles)
+  std::string element;  ///< "vertex", "edge" (on curves) or "face" (on triangles)
   bool label = false;
   std::vector<float> values;  ///< one per vertex, curve or triangle
 };
 
 struct ViewSurface {
-  std::string id;    ///< the layer's key in the page's `layers=` query
-  std::string name;  ///< shown in the panel
-  std::vector<float> positions;        ///< x y z per vertex
+  std::string id;                ///< the layer's key in the page's `layers=` query
+  std::string name;              ///< shown in the panel
+  std::vector<float> positions;  ///< x y z per vertex
   std::vector<std::uint32_t> triangles;
-  std::vector<std::uint8_t> colours;   ///< r g b per vertex, or empty
+  std::vector<std::uint8_t> colours;  ///< r g b per vertex, or empty
   std::string colour = "#8a9bb0";
   double opacity = 0.25;
   bool visible = false;

@@ -1,8 +1,8 @@
-# Writes OUTPUT, a C++ file holding viewer.html, viewer.css and viewer.js of SOURCE as
-# medax::cli::viewer_assets::kHtml, kCss and kJs (see framework/cli/view_assets.hpp).
+# Writes OUTPUT, a C++ file holding viewer.html, viewer.css, viewer.js and results.html of SOURCE as
+# medax::cli::viewer_assets::kHtml, kCss, kJs and kResultsHtml (see framework/cli/view_assets.hpp).
 set(body "// Generated from framework/viewer by embed.cmake: edit those files, not this one.\n")
 string(APPEND body "#include \"view_assets.hpp\"\n\nnamespace medax::cli::viewer_assets {\n\n")
-foreach(pair "kHtml;viewer.html" "kCss;viewer.css" "kJs;viewer.js")
+foreach(pair "kHtml;viewer.html" "kCss;viewer.css" "kJs;viewer.js" "kResultsHtml;results.html")
   list(GET pair 0 name)
   list(GET pair 1 file)
   file(READ ${SOURCE}/${file} text)

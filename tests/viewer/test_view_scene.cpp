@@ -1,5 +1,6 @@
 // What the viewer reads from a run folder (framework/cli/view_scene.cpp): the medial complex
 // with its fields, curves = edges bounding no triangle, the input surface, other surfaces.
+#include "view_csv.hpp"
 #include "view_scene.hpp"
 #include "viewer_fixture.hpp"
 
@@ -20,9 +21,7 @@ const ViewField* find_field(const ViewScene& scene, const std::string& element, 
   return nullptr;
 }
 
-void write_file(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream(file) << text;
-}
+void write_file(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
 
 }  // namespace
 
@@ -62,15 +61,17 @@ TEST_CASE("the viewer's scene of a real run holds its medial complex, fields and
 
 TEST_CASE("the viewer fans polygons, keeps a face field per triangle and an edge field per curve", "[viewer]") {
   const auto dir = scratch_dir("viewer_scene_ply");
-  write_file(dir / "medial.ply",
-             "ply\nformat ascii 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
-             "property double radius\nproperty int sheet\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
-             "property double strength\nelement face 1\nproperty list uchar int vertex_indices\nproperty double angle\n"
-             "end_header\n0 0 0 1 7\n1 0 0 1 7\n1 1 0 2 8\n0 1 0 2 8\n3 3 3 0.5 9\n0 1 0.25\n2 4 0.75\n4 0 1 2 3 1.5\n");
-  write_file(dir / "durix_segmentation.ply",
-             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-             "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
-             "property list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
+  write_file(
+      dir / "medial.ply",
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty double x\nproperty double y\nproperty double z\n"
+      "property double radius\nproperty int sheet\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
+      "property double strength\nelement face 1\nproperty list uchar int vertex_indices\nproperty double angle\n"
+      "end_header\n0 0 0 1 7\n1 0 0 1 7\n1 1 0 2 8\n0 1 0 2 8\n3 3 3 0.5 9\n0 1 0.25\n2 4 0.75\n4 0 1 2 3 1.5\n");
+  write_file(
+      dir / "durix_segmentation.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
   const ViewScene scene = medax::cli::read_view_scene(dir);
   CHECK(scene.triangles == std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
   CHECK(scene.curves == std::vector<std::uint32_t>{2, 4});  // 0-1 bounds the quad
@@ -97,7 +98,19 @@ TEST_CASE("the viewer refuses a folder without a medial complex and a binary PLY
   CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("holds no medial.ply or medial.ma"));
   write_file(dir / "medial.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n");
   CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("binary_little_endian PLY is not read"));
-  write_file(dir / "medial.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
-                                 "property double z\nproperty double radius\nend_header\n0 0 0 1\n");
+  write_file(dir / "medial.ply",
+             "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\n"
+             "property double z\nproperty double radius\nend_header\n0 0 0 1\n");
   CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("ends inside element 'vertex'"));
+}
+
+TEST_CASE("results.csv is read with its quoting: commas, quotes and line breaks inside a cell", "[viewer]") {
+  const auto dir = scratch_dir("viewer_csv");
+  write_file(dir / "results.csv", "job,status,error\n0001-a,ok,\n0002-b,failed,\"stage x: \"\"bad\"\", then\nmore\"\n");
+  const auto rows = medax::cli::read_csv(dir / "results.csv");
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0] == std::vector<std::string>{"job", "status", "error"});
+  CHECK(rows[1] == std::vector<std::string>{"0001-a", "ok", ""});
+  CHECK(rows[2] == std::vector<std::string>{"0002-b", "failed", "stage x: \"bad\", then\nmore"});
+  CHECK(!medax::cli::is_experiment_folder(dir));  // no jobs/ folder
 }

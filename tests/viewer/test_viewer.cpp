@@ -85,7 +85,8 @@ TEST_CASE("switching the field recolours the axis and keeps its outline", "[view
 
 TEST_CASE("medax snapshot writes a PNG of the requested size showing the axis", "[viewer][snapshot]") {
   const auto png = small_run().parent_path() / "shot.png";
-  const auto r = run_medax("snapshot '" + small_run().string() + "' --size 320x240 --view top -o '" + png.string() + "'");
+  const auto r =
+      run_medax("snapshot '" + small_run().string() + "' --size 320x240 --view top -o '" + png.string() + "'");
   INFO(r.out << r.err);
   REQUIRE(r.code == 0);
   const Picture shot = read_png(png);
@@ -96,7 +97,7 @@ TEST_CASE("medax snapshot writes a PNG of the requested size showing the axis", 
   // A picked vertex adds its sphere to the picture.
   const auto picked_png = small_run().parent_path() / "picked.png";
   const auto picked = run_medax("snapshot '" + small_run().string() + "' --size 320x240 --view top --pick 0 -o '" +
-                            picked_png.string() + "'");
+                                picked_png.string() + "'");
   REQUIRE(picked.code == 0);
   CHECK(count_different(shot, read_png(picked_png)) > 50);
 }
@@ -108,4 +109,36 @@ TEST_CASE("medax snapshot refuses a field the run does not have and lists the fi
   CHECK_THAT(r.err, Catch::Contains("no field 'et'"));
   CHECK_THAT(r.err, Catch::Contains("vertex:radius"));
   CHECK(!std::filesystem::exists(png));
+}
+
+TEST_CASE("medax view on an experiment writes results.html: a sortable row, a picture and a viewer per job",
+          "[viewer][experiment]") {
+  const auto dir = scratch_dir("viewer_experiment") / "experiment";
+  const auto run = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_experiment.yaml").string() +
+                             "' --out '" + dir.string() + "' --quiet");
+  INFO(run.out << run.err);
+  REQUIRE(run.code == 0);
+  const auto view = run_medax("view '" + dir.string() + "' --no-open");
+  INFO(view.out << view.err);
+  REQUIRE(view.code == 0);
+  CHECK_THAT(view.out, Catch::Contains("results.html"));
+  for (const char* job : {"0001-ellipsoid", "0002-joint"})
+    CHECK(std::filesystem::is_regular_file(dir / "viewers" / (std::string(job) + ".html")));
+
+  Browser browser;
+  std::string log;
+  // Sorted by face count: the ellipsoid's axis has 944 triangles, the joint's 186.
+  const std::string up = browser.dom(dir / "results.html", "sort=counts.faces", log);
+  const std::string down = browser.dom(dir / "results.html", "sort=counts.faces&order=down", log);
+  CHECK(status_attribute(up, "data-state") == "ready");
+  CHECK(status_attribute(up, "data-rows") == "2");
+  CHECK(up.find("0002-joint</a>") < up.find("0001-ellipsoid</a>"));
+  CHECK(down.find("0001-ellipsoid</a>") < down.find("0002-joint</a>"));
+  CHECK(up.find("href=\"viewers/0001-ellipsoid.html\"") != std::string::npos);
+  // One picture per job, each a PNG inside the page.
+  std::size_t pictures = 0;
+  for (std::size_t at = up.find("class=\"thumbnail\" src=\"data:image/png;base64,"); at != std::string::npos;
+       at = up.find("class=\"thumbnail\" src=\"data:image/png;base64,", at + 1))
+    ++pictures;
+  CHECK(pictures == 2);
 }

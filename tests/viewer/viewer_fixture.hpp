@@ -31,7 +31,8 @@ inline std::string file_text(const std::filesystem::path& file) {
 /// Runs `medax ARGS` (the built binary, its own plugins), capturing stdout and stderr.
 inline CommandOutput run_medax(const std::string& args) {
   const auto err_file = binary_dir() / "tests" / "scratch" / "viewer_medax_stderr.txt";
-  const std::string command = "MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) + "' " + args + " 2>'" + err_file.string() + "'";
+  const std::string command =
+      "MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) + "' " + args + " 2>'" + err_file.string() + "'";
   CommandOutput result;
   FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe);
@@ -49,7 +50,7 @@ inline const std::filesystem::path& small_run() {
   static const std::filesystem::path folder = [] {
     const auto dir = scratch_dir("viewer_run") / "quickstart-ellipsoid";
     const auto r = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_run.yaml").string() + "' --input '" +
-                         (data_dir() / "ellipsoid.off").string() + "' --out '" + dir.string() + "' --quiet");
+                             (data_dir() / "ellipsoid.off").string() + "' --out '" + dir.string() + "' --quiet");
     INFO(r.out << r.err);
     REQUIRE(r.code == 0);
     return dir;

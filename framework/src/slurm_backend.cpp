@@ -104,19 +104,18 @@ Submission submit(const SweepConfig& config, const std::vector<std::string>& nam
   if (slurm.cpus > 0) argv.push_back(fmt::format("--cpus-per-task={}", slurm.cpus));
   argv.push_back(script.string());
   const slurm::CommandResult r = slurm::run_command(argv);
-  const std::string id = r.output.substr(0, r.output.find_first_of(";\n"));
-  if (r.exit_code != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
-    throw std::runtime_error(slurm::command_failure("sbatch", r));
-  return Submission{id, names, time, memory, false};
-}
-
-nlohmann::json status_of(const fs::path& out_dir, const std::string& name) {
-  return detail::read_json_file(out_dir / "jobs" / name / "status.json");
+  if (r.exit_code == 0)  // --parsable prints ID[;CLUSTER], after any warnings on stderr
+    for (const std::string& line : slurm::lines_of(r.output)) {
+      const std::string id = line.substr(0, line.find(';'));
+      if (!id.empty() && id.find_first_not_of("0123456789") == std::string::npos)
+        return Submission{id, names, time, memory, false};
+    }
+  throw std::runtime_error(slurm::command_failure("sbatch", r));
 }
 
 /// A text field of a job's status.json; "" when the file or the field is missing.
 std::string status_field(const fs::path& out_dir, const std::string& name, const char* key) {
-  const nlohmann::json status = status_of(out_dir, name);
+  const nlohmann::json status = detail::read_json_file(out_dir / "jobs" / name / "status.json");
   return status.is_object() && status.contains(key) && status[key].is_string() ? status[key].get<std::string>() : "";
 }
 

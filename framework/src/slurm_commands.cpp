@@ -51,6 +51,16 @@ CommandResult run_command(const std::vector<std::string>& argv) {
   return result;
 }
 
+std::vector<std::string> lines_of(const std::string& output) {
+  std::vector<std::string> lines;
+  std::istringstream in(output);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  return lines;
+}
+
 bool is_final_state(const std::string& state) {
   static const std::set<std::string> final_states{"COMPLETED", "FAILED",    "TIMEOUT",   "OUT_OF_MEMORY",
                                                   "NODE_FAIL", "CANCELLED", "PREEMPTED", "BOOT_FAIL",
@@ -64,14 +74,13 @@ namespace {
 /// "INDEX|STATE" lines (squeue -o '%K|%T') or "ID_INDEX|STATE" lines (sacct -P -o JobID,State).
 std::map<std::size_t, std::string> parse_states(const std::string& text) {
   std::map<std::size_t, std::string> states;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
+  for (const std::string& line : lines_of(text)) {
     const auto bar = line.find('|');
     if (bar == std::string::npos) continue;
     std::string index = line.substr(0, bar);
     index = index.substr(index.find('_') == std::string::npos ? 0 : index.find('_') + 1);
     if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) continue;  // "[3-9%2]" rows
-    states[std::stoul(index)] = line.substr(bar + 1, line.find_last_not_of(" \r") - bar);
+    states[std::stoul(index)] = line.substr(bar + 1, line.find_last_not_of(' ') - bar);
   }
   return states;
 }

@@ -15,6 +15,9 @@ struct CommandResult {
 /// Runs ARGV[0] found on PATH, waits for it and returns its exit code and output.
 CommandResult run_command(const std::vector<std::string>& argv);
 
+/// The lines of a command's output, without their line ends, latest last.
+std::vector<std::string> lines_of(const std::string& output);
+
 /// Slurm's final states that name why Slurm ended a task (TIMEOUT, OUT_OF_MEMORY, NODE_FAIL...).
 bool is_final_state(const std::string& state);
 

@@ -40,13 +40,15 @@ std::optional<detail::TaskLimit> slurm_time_limit() {
   // ARRAY_INDEX names this task alone (the array's own id would list every task).
   const std::string task = environment("SLURM_ARRAY_JOB_ID") + "_" + environment("SLURM_ARRAY_TASK_ID");
   const slurm::CommandResult r = slurm::run_command({"squeue", "-h", "-j", task, "-o", "%L|%l"});
-  const std::string line = r.output.substr(0, r.output.find('\n'));
+  std::string line;  // TIME_LEFT|TIME_LIMIT
+  for (const std::string& l : slurm::lines_of(r.output))
+    if (l.find('|') != std::string::npos) line = l;
   const auto bar = line.find('|');
   if (r.exit_code != 0 || bar == std::string::npos) return std::nullopt;
   const auto left = slurm::duration_seconds(line.substr(0, bar));
   if (!left) return std::nullopt;
   std::string limit = line.substr(bar + 1);
-  limit.erase(limit.find_last_not_of(" \r") + 1);
+  limit.erase(limit.find_last_not_of(' ') + 1);
   return detail::TaskLimit{std::chrono::steady_clock::now() + std::chrono::seconds(static_cast<long>(*left)), limit};
 }
 

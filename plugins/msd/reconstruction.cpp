@@ -6,6 +6,7 @@
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
@@ -99,21 +100,25 @@ ReconstructedSurface reconstruct_sdf(const std::vector<Primitive>& primitives, c
   openvdb::initialize();
   const Vec3 origin = box.low;
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel);
-  openvdb::FloatGrid::Ptr united;
-  std::size_t merged = 0;
-  for (const Primitive& p : primitives) {
-    if (!p.fitted) continue;
-    openvdb::FloatGrid::Ptr grid = primitive_level_set(p, origin, *transform);
-    if (united) openvdb::tools::csgUnion(*united, *grid);  // the minimum of the two distances
-    else united = grid;
-    ++merged;
+  std::vector<const Primitive*> fitted;
+  for (const Primitive& p : primitives)
+    if (p.fitted) fitted.push_back(&p);
+  // One level set per primitive in parallel (a primitive alone keeps OpenVDB's own threads idle),
+  // then the union in primitive order.
+  std::vector<openvdb::FloatGrid::Ptr> grids(fitted.size());
+  tbb::parallel_for(std::size_t{0}, fitted.size(),
+                    [&](std::size_t k) { grids[k] = primitive_level_set(*fitted[k], origin, *transform); });
+  openvdb::FloatGrid::Ptr united = grids.front();
+  for (std::size_t k = 1; k < grids.size(); ++k) {
+    openvdb::tools::csgUnion(*united, *grids[k]);  // the minimum of the two distances
+    grids[k].reset();
   }
   ReconstructedSurface result;
   result.surface = mesh_zero_level(*united, origin);
   orient_outward(result.surface);
   result.to_input = to_input;
   result.method = fmt::format("signed distance, {} voxels across (voxel {:.3g}), union of {} primitives (OpenVDB)",
-                              options.resolution, voxel, merged);
+                              options.resolution, voxel, fitted.size());
   return result;
 }
 

@@ -146,11 +146,17 @@ std::size_t add_voronoi_faces(const std::vector<Node>& nodes, bool parallel, Med
 /// The inside test of a cloud without a mesh (InsideMethod::Normals): a circumcentre is inside
 /// when it lies on the inner side of its cell's corners, the mean over the four corners p of
 /// n_p · (c − p)/|c − p| being negative (the inner pole of a sample lies against its outward
-/// normal: Amenta, Choi & Kolluri's pole labelling, with the normals given).
+/// normal: Amenta, Choi & Kolluri's pole labelling, with the normals given), and within the
+/// points' bounding box (the solid's medial axis is: a nearly flat cell on the surface has its
+/// circumcentre far off along the normal, on either side).
 std::vector<char> inside_by_normals(const DelaunayTetrahedralization& dt, const std::vector<Vec3>& points,
                                     const std::vector<Vec3>& normals) {
+  Vec3 lo = points.front(), hi = lo;
+  for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   std::vector<char> inside(dt.cells.size(), 0);
   tbb::parallel_for(std::size_t{0}, dt.cells.size(), [&](std::size_t c) {
+    const Vec3& centre = dt.circumcentres[c];
+    if ((centre.array() < lo.array()).any() || (centre.array() > hi.array()).any()) return;
     double side = 0;
     for (const Index p : dt.cells[c]) {
       const Vec3 to_centre = dt.circumcentres[c] - points[p];

@@ -66,8 +66,8 @@ MedialComplex interior_voronoi(const std::vector<Vec3>& points, const SurfaceMes
                                InteriorVoronoiReport* report = nullptr);
 
 /// The same for oriented samples without a mesh (a point cloud): a cell is interior when its
-/// circumcentre c lies on the inner side of its four corners p, sum of n_p · (c − p)/|c − p| < 0
-/// (`options.inside` is not used). Throws std::invalid_argument without one normal per sample.
+/// circumcentre c lies on the inner side of its four corners p, sum of n_p · (c − p)/|c − p| < 0,
+/// and within the points' bounding box (`options.inside` is not used). Throws std::invalid_argument without one normal per sample.
 MedialComplex interior_voronoi(const OrientedSamples& samples, const InteriorVoronoiOptions& options = {},
                                InteriorVoronoiReport* report = nullptr);
 

@@ -39,7 +39,12 @@ nlohmann::json scene_json(const ViewScene& scene) {
                         {"colors", s.colours.empty() ? "" : typed_array(s.colours)},
                         {"color", s.colour},
                         {"opacity", s.opacity},
-                        {"visible", s.visible}});
+                        {"visible", s.visible},
+                        {"field", s.field.name.empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json{{"name", s.field.name},
+                                                                        {"element", s.field.element},
+                                                                        {"label", s.field.label},
+                                                                        {"values", typed_array(s.field.values)}}}});
   return {{"title", scene.title},
           {"medial",
            {{"positions", typed_array(scene.positions)},

@@ -138,17 +138,40 @@ ViewSurface surface_layer(std::string id, std::string name, const SurfaceMesh& m
   return s;
 }
 
-/// A surface PLY a stage wrote (e.g. durix_segmentation.ply), with its vertex colours when it has them.
+const std::set<std::string> kNotAField{"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue", "alpha"};
+
+/// What a stage's PLY layer is coloured by: its vertex `distance` (the reconstruction envelope's
+/// distance to the surface), else its first face property (MSD's primitive), else its first
+/// vertex property; none when it has its own colours.
+ViewField layer_field(const PlyTable& vertex, const PlyTable* face, const std::vector<std::size_t>& face_rows) {
+  if (vertex.find("red")) return {};
+  if (const PlyProperty* d = vertex.find("distance")) return {d->name, "vertex", false, as_floats(d->values)};
+  const auto first = [](const PlyTable& t) -> const PlyProperty* {
+    for (const PlyProperty& p : t.properties)
+      if (!kNotAField.count(p.name)) return &p;
+    return nullptr;
+  };
+  if (const PlyProperty* p = face ? first(*face) : nullptr) {
+    ViewField f{p->name, "face", p->integer, {}};
+    for (std::size_t row : face_rows) f.values.push_back(static_cast<float>(p->values[row]));
+    return f;
+  }
+  if (const PlyProperty* p = first(vertex)) return {p->name, "vertex", p->integer, as_floats(p->values)};
+  return {};
+}
+
+/// A PLY a stage wrote: a surface (e.g. durix_segmentation.ply, with its vertex colours; MSD's
+/// primitives) or a point set (the reconstruction's envelope samples).
 ViewSurface ply_surface(const fs::path& file) {
   const auto tables = read_ply_tables(file);
   const auto vertex = tables.find("vertex"), face = tables.find("face");
-  if (vertex == tables.end() || face == tables.end() || face->second.triangles.empty())
-    throw std::runtime_error("it has no triangles");
+  if (vertex == tables.end() || vertex->second.rows == 0) throw std::runtime_error("it has no vertices");
   const PlyTable& v = vertex->second;
+  const PlyTable* f = face == tables.end() ? nullptr : &face->second;
   ViewSurface s;
   s.id = s.name = file.filename().string();
   s.positions = points(v, file);
-  s.triangles = face->second.triangles;
+  if (f) s.triangles = f->triangles;
   for (std::uint32_t i : s.triangles)
     if (i >= v.rows) throw std::runtime_error(fmt::format("vertex index {} is not in 0..{}", i, v.rows - 1));
   const PlyProperty *r = v.find("red"), *g = v.find("green"), *b = v.find("blue");
@@ -156,6 +179,8 @@ ViewSurface ply_surface(const fs::path& file) {
     for (std::size_t i = 0; i < v.rows; ++i)
       s.colours.insert(s.colours.end(),
                        {std::uint8_t(r->values[i]), std::uint8_t(g->values[i]), std::uint8_t(b->values[i])});
+  s.field = layer_field(v, f, f ? f->triangle_row : std::vector<std::size_t>{});
+  if (!s.field.name.empty()) s.opacity = 1;  // a coloured layer is looked at, not through
   return s;
 }
 

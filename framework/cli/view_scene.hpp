@@ -16,12 +16,14 @@ struct ViewField {
   std::vector<float> values;  ///< one per vertex, curve or triangle
 };
 
+/// A surface, or a point set when it has no triangles.
 struct ViewSurface {
   std::string id;                ///< the layer's key in the page's `layers=` query
   std::string name;              ///< shown in the panel
   std::vector<float> positions;  ///< x y z per vertex
   std::vector<std::uint32_t> triangles;
   std::vector<std::uint8_t> colours;  ///< r g b per vertex, or empty
+  ViewField field;                    ///< what the layer is coloured by (no name: its colours or `colour`)
   std::string colour = "#8a9bb0";
   double opacity = 0.25;
   bool visible = false;

@@ -123,21 +123,52 @@
     new THREE.PointsMaterial({ size: 3, sizeAttenuation: false, vertexColors: THREE.VertexColors })),
   medial.triangles.length === 0 && medial.curves.length === 0);
 
-  for (const surface of data.surfaces) {
-    const g = new THREE.BufferGeometry();
-    g.setAttribute('position', new THREE.BufferAttribute(decode(surface.positions, Float32Array), 3));
-    g.setIndex(new THREE.BufferAttribute(decode(surface.triangles, Uint32Array), 1));
-    g.computeVertexNormals();
-    const material = { color: surface.color, side: THREE.DoubleSide, transparent: surface.opacity < 1,
-      opacity: surface.opacity, depthWrite: surface.opacity >= 1 };
+  // A surface or point set of the run: plain, in its own per-vertex colours, or coloured by its
+  // field over the field's range (named in the panel). A face field needs a copy per corner.
+  function shortNumber(v) {
+    return Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toPrecision(4);
+  }
+  function surfaceLayer(surface) {
+    const positions = decode(surface.positions, Float32Array), triangles = decode(surface.triangles, Uint32Array);
+    const field = surface.field &&
+      Object.assign({}, surface.field, { values: decode(surface.field.values, Float32Array) });
+    const perFace = field && field.element === 'face';
+    let g;
+    if (perFace) {
+      g = expandedGeometry(positions, triangles);
+    } else {
+      g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+      if (triangles.length) g.setIndex(new THREE.BufferAttribute(triangles, 1));
+    }
+    const count = g.attributes.position.count;
+    let name = surface.name;
     if (surface.colors) {
       const rgb = decode(surface.colors, Uint8Array);
       g.setAttribute('color', new THREE.BufferAttribute(Float32Array.from(rgb, (c) => c / 255), 3));
-      Object.assign(material, { color: 0xffffff, vertexColors: THREE.VertexColors });
+    } else if (field) {
+      const range = fieldRange(field), colour = colourOf(field, range);
+      g.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
+      paint(g.attributes.color, count,
+        perFace ? (k) => colour(field.values[Math.floor(k / 3)]) : (i) => colour(field.values[i]));
+      name += field.label ? `: ${field.name} (labels)`
+        : `: ${field.name} ${shortNumber(range[0])} to ${shortNumber(range[1])}`;
     }
-    const mesh = new THREE.Mesh(g, new THREE.MeshPhongMaterial(material));
+    const coloured = Boolean(g.attributes.color);
+    if (!triangles.length)
+      return [name, new THREE.Points(g, new THREE.PointsMaterial({ size: 2, sizeAttenuation: false,
+        color: coloured ? 0xffffff : surface.color, vertexColors: coloured ? THREE.VertexColors : THREE.NoColors }))];
+    if (!perFace) g.computeVertexNormals();
+    const material = new THREE.MeshPhongMaterial({ color: coloured ? 0xffffff : surface.color,
+      vertexColors: coloured ? THREE.VertexColors : THREE.NoColors, side: THREE.DoubleSide, flatShading: perFace,
+      transparent: surface.opacity < 1, opacity: surface.opacity, depthWrite: surface.opacity >= 1 });
+    const mesh = new THREE.Mesh(g, material);
     mesh.renderOrder = 1;  // translucent surfaces after the opaque medial layers
-    addLayer(surface.id, surface.name, mesh, surface.visible);
+    return [name, mesh];
+  }
+  for (const surface of data.surfaces) {
+    const [name, object] = surfaceLayer(surface);
+    addLayer(surface.id, name, object, surface.visible);
   }
 
   // Every sphere: one instanced draw call.
@@ -244,9 +275,8 @@
       `rgb(${c.map((x) => Math.round(255 * x)).join(',')}) ${(100 * i / (kViridis.length - 1)).toFixed(0)}%`);
     document.getElementById('legend-bar').style.background = field.label ? labelSwatches(range)
       : `linear-gradient(90deg, ${stops.join(', ')})`;
-    const fmt = (v) => (Math.abs(v) >= 1e4 || (Math.abs(v) < 1e-3 && v !== 0) ? v.toExponential(3) : v.toPrecision(4));
-    document.getElementById('legend-min').textContent = fmt(range[0]);
-    document.getElementById('legend-max').textContent = fmt(range[1]);
+    document.getElementById('legend-min').textContent = shortNumber(range[0]);
+    document.getElementById('legend-max').textContent = shortNumber(range[1]);
   }
 
   // ---- picking: click a medial vertex (or a triangle/curve near it) ----

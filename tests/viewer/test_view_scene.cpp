@@ -89,6 +89,7 @@ TEST_CASE("the viewer fans polygons, keeps a face field per triangle and an edge
   REQUIRE(scene.surfaces.size() == 1);
   CHECK(scene.surfaces[0].id == "durix_segmentation.ply");
   CHECK(scene.surfaces[0].colours == std::vector<std::uint8_t>{255, 0, 0, 0, 255, 0, 0, 0, 255});
+  CHECK(scene.surfaces[0].field.name.empty());  // shown in its own colours
   // No config.resolved.yaml and no run.json: said, not hidden.
   CHECK(scene.notes.size() == 2);
 }
@@ -113,4 +114,34 @@ TEST_CASE("results.csv is read with its quoting: commas, quotes and line breaks 
   CHECK(rows[1] == std::vector<std::string>{"0001-a", "ok", ""});
   CHECK(rows[2] == std::vector<std::string>{"0002-b", "failed", "stage x: \"bad\", then\nmore"});
   CHECK(!medax::cli::is_experiment_folder(dir));  // no jobs/ folder
+}
+
+TEST_CASE("a stage's point set and primitives are layers coloured by their own field", "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_layers");
+  write_file(dir / "medial.ma", "2 1 0\nv 0 0 0 1\nv 1 0 0 1\ne 0 1\n");
+  // The reconstruction's envelope samples: points with normals, areas and their distance.
+  write_file(dir / "reconstruction_envelope.ply",
+             "ply\nformat ascii 1.0\nelement vertex 2\nproperty double x\nproperty double y\nproperty double z\n"
+             "property double nx\nproperty double ny\nproperty double nz\nproperty double area\n"
+             "property double distance\nend_header\n0 0 1 0 0 1 0.5 0.01\n0 0 -1 0 0 -1 0.5 0.03\n");
+  // MSD's primitives: triangles labelled by the primitive they belong to.
+  write_file(dir / "msd_primitives.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+             "property double radius\nelement face 2\nproperty list uchar int vertex_indices\nproperty int primitive\n"
+             "end_header\n0 0 0 1\n1 0 0 1\n0 1 0 1\n1 1 0 1\n3 0 1 2 4\n3 1 3 2 9\n");
+  const ViewScene scene = medax::cli::read_view_scene(dir);
+  REQUIRE(scene.surfaces.size() == 2);
+  const auto& primitives = scene.surfaces[0];  // sorted by file name
+  CHECK(primitives.id == "msd_primitives.ply");
+  CHECK(primitives.field.name == "primitive");
+  CHECK(primitives.field.element == "face");
+  CHECK(primitives.field.label);
+  CHECK(primitives.field.values == std::vector<float>{4, 9});
+  const auto& envelope = scene.surfaces[1];
+  CHECK(envelope.triangles.empty());  // a point set
+  CHECK(envelope.positions.size() == 6);
+  CHECK(envelope.field.name == "distance");
+  CHECK(envelope.field.element == "vertex");
+  CHECK(envelope.field.values == std::vector<float>{0.01f, 0.03f});
+  CHECK(scene.curves == std::vector<std::uint32_t>{0, 1});  // the .ma's edge, in no triangle
 }

@@ -4,6 +4,8 @@
 
 #include <medax/io.hpp>
 
+#include <cmath>
+#include <fstream>
 #include <regex>
 
 using namespace medax::test;
@@ -100,6 +102,30 @@ TEST_CASE("medax snapshot writes a PNG of the requested size showing the axis", 
                                 picked_png.string() + "'");
   REQUIRE(picked.code == 0);
   CHECK(count_different(shot, read_png(picked_png)) > 50);
+}
+
+TEST_CASE("a stage's point set is drawn coloured by its distance field, without page errors", "[viewer]") {
+  // The small run plus envelope samples as the reconstruction stage writes them (a ring of points
+  // around the ellipsoid's waist, coloured by distance).
+  const auto dir = scratch_dir("viewer_points") / "run";
+  std::filesystem::copy(small_run(), dir);
+  std::ofstream ply(dir / "reconstruction_envelope.ply");
+  ply << "ply\nformat ascii 1.0\nelement vertex 360\nproperty double x\nproperty double y\nproperty double z\n"
+         "property double distance\nend_header\n";
+  for (int i = 0; i < 360; ++i)
+    ply << 0.2 * std::cos(i * M_PI / 180) << ' ' << 0.3 * std::sin(i * M_PI / 180) << " 0 " << i * 1e-4 << '\n';
+  ply.close();
+  const auto page = dir.parent_path() / "view.html";
+  REQUIRE(run_medax("view '" + dir.string() + "' --no-open -o '" + page.string() + "'").code == 0);
+  Browser browser;
+  std::string log;
+  const std::string dom = browser.dom(page, "", log);
+  CHECK(status_attribute(dom, "data-errors") == "0");
+  CHECK(medax::cli::page_errors(log).empty());
+  const Picture points = browser.screenshot(page, "view=front&legend=0&layers=reconstruction_envelope.ply", 400, 300);
+  const std::size_t drawn = count_not(points, kWhite);
+  CHECK(drawn > 200);
+  CHECK(drawn < 400 * 300 / 10);  // points on a ring, not a filled shape
 }
 
 TEST_CASE("medax snapshot refuses a field the run does not have and lists the fields (exit 2)", "[viewer][snapshot]") {

@@ -226,7 +226,8 @@ std::size_t fix_orphans(SplitMesh& split, const std::vector<Vec3>& sites, const 
     for (Index r : roots) rooted.insert(sets.find(r));
     std::map<Index, std::pair<Vec3, double>> centre;  // component -> (weighted sum, measure)
     for (Index p = 0; p < split.pieces.size(); ++p) {
-      auto& c = centre[sets.find(p)];
+      // try_emplace with zeros: an Eigen vector is not zeroed by a default construction.
+      auto& c = centre.try_emplace(sets.find(p), Vec3::Zero(), 0.0).first->second;
       c.first += split.pieces[p].rvd.measure * split.pieces[p].rvd.centroid;
       c.second += split.pieces[p].rvd.measure;
     }

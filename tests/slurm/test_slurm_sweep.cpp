@@ -52,6 +52,7 @@ class LocalSlurm {
     REQUIRE(::mkdtemp(name));
     state_ = name;
     const Shell started = shell("'" + kScript.string() + "' start '" + state_.string() + "'");
+    if (started.code != 0) stop();  // the daemons that did start (the destructor will not run)
     INFO("scripts/slurm-local.sh start: " << started.output);
     REQUIRE(started.code == 0);
     ::setenv("SLURM_CONF", (state_ / "slurm.conf").c_str(), 1);  // for medax, sbatch and squeue

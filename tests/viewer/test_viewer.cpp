@@ -34,6 +34,19 @@ TEST_CASE("medax view writes one self-contained page: scripts and data inline, n
   CHECK(html.find("<!--medax:") == std::string::npos);  // every slot of the template is filled
 }
 
+TEST_CASE("medax run --view writes the run's page beside its folder when the run ends", "[viewer]") {
+  const auto dir = scratch_dir("viewer_run_view") / "run";
+  // No display: the page's path is printed instead of opening a browser.
+  const auto r = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_run.yaml").string() + "' --out '" +
+                           dir.string() + "' --quiet --view");
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto page = dir.parent_path() / "run.html";
+  CHECK_THAT(r.out, Catch::Contains("viewer: " + page.string()));
+  CHECK(std::filesystem::file_size(page) > 500000);
+  CHECK(!std::filesystem::exists(dir / "run.html"));  // the run folder stays as run.json lists it
+}
+
 TEST_CASE("the viewer page loads in Chromium without console errors and holds every medial triangle", "[viewer]") {
   const auto page = small_run_page();
   const auto medial = medax::read_ma(small_run() / "medial.ma");

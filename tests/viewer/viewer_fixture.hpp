@@ -31,8 +31,9 @@ inline std::string file_text(const std::filesystem::path& file) {
 /// Runs `medax ARGS` (the built binary, its own plugins), capturing stdout and stderr.
 inline CommandOutput run_medax(const std::string& args) {
   const auto err_file = binary_dir() / "tests" / "scratch" / "viewer_medax_stderr.txt";
-  const std::string command =
-      "MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) + "' " + args + " 2>'" + err_file.string() + "'";
+  // No display: `view` prints the page's path instead of opening a browser.
+  const std::string command = "env -u DISPLAY -u WAYLAND_DISPLAY MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) +
+                              "' " + args + " 2>'" + err_file.string() + "'";
   CommandOutput result;
   FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe);

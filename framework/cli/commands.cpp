@@ -138,6 +138,13 @@ int validate(const RunArgs& args) {
 int run(const RunArgs& args) {
   if (!check_pipeline_file(args.pipeline)) return 2;
   if (!args.single_job && is_sweep(args.pipeline)) return run_sweep(args);
+  if (!args.single_job && args.backend != "local") {
+    fmt::print(stderr,
+               "error: --backend {} runs the jobs of an experiment (a file with `sweep:` or `inputs:`); {} is one "
+               "pipeline: drop --backend, or write an experiment around it (docs/experiments.md)\n",
+               args.backend, args.pipeline.string());
+    return 2;
+  }
   Registry& registry = Registry::global();
   auto config = load(args, registry);
   if (!config) return 2;

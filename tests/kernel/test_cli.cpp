@@ -117,3 +117,13 @@ TEST_CASE("medax run of an invalid pipeline exits 2 and runs nothing", "[cli]") 
   CHECK_THAT(r.err, Catch::Contains(file.string() + ":4:5: error:"));
   CHECK_FALSE(fs::exists(dir / "run"));
 }
+
+TEST_CASE("medax run --backend slurm on a single pipeline exits 2 and runs nothing", "[cli]") {
+  const auto dir = scratch_dir("cli_run_backend_single");
+  const auto file = write_text(dir / "p.yaml", cube_pipeline("  - plugin: test_centroid\n"));
+  const auto r = run_medax("run '" + file.string() + "' --backend slurm --out '" + (dir / "run").string() + "'", kGood,
+                           dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::Contains("--backend slurm runs the jobs of an experiment"));
+  CHECK_FALSE(fs::exists(dir / "run"));
+}

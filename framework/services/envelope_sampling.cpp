@@ -180,9 +180,11 @@ std::vector<std::uint64_t> corner_keys(const std::vector<Cell>& cells, const Can
 /// The value at grid point z (key) of pass p < kLastLevel, from its neighbours on L_{p+1}, whose
 /// values are known: a neighbour far enough settles it by the Lipschitz bound (primitive −1,
 /// `settled`); otherwise the best of their primitives at z seeds the search (stopping at one that
-/// contains z, which settles the sign).
+/// contains z, which settles the sign). `outside` receives the best lower bound on φ(z) the
+/// neighbours give (a value ≥ 0 of a neighbour is exact or a lower bound; φ is 1-Lipschitz).
 Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values,
-                 std::uint64_t key, const Vec3& z, double step, int pass, double pass_reach, bool& settled) {
+                 std::uint64_t key, const Vec3& z, double step, int pass, double pass_reach, bool& settled,
+                 double& outside) {
   const auto [i, j, k] = unpack(key);
   // Parents: round each coordinate off L_{pass+1} down or up.
   const std::uint64_t s = std::uint64_t{1} << pass, m = 2 * s;
@@ -202,6 +204,7 @@ Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corne
       settled = true;
       return Hit{near.d - offset, -1};
     }
+    if (near.d >= 0) outside = std::max(outside, near.d - offset);
     const std::int64_t prim = near.prim;
     if (prim < 0 || std::find(tried, tried + ntried, prim) != tried + ntried) continue;
     tried[ntried++] = prim;
@@ -212,6 +215,14 @@ Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corne
   return start;
 }
 
+/// How far the last pass's searches look: one step (an outside end of a crossing edge is within
+/// a step of E).
+double last_pass_reach(const Grid& grid) { return grid.step * (1 + 1e-9) + grid.slack; }
+
+/// The primitive of a last-pass value that only bounds φ from below (outside by the neighbours'
+/// values), not searched.
+constexpr std::int64_t kUnsearched = -2;
+
 /// 2. φ at the grid points `corners`. Only what a crossing edge needs is computed: the sign, and
 ///    for an outside point next to a crossing (so within one step of E) the exact value and
 ///    primitive. A search stops at the first primitive containing the point and ignores anything
@@ -220,16 +231,16 @@ Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corne
 ///    the points of L_p not in L_{p+1}. Their values are exact up to a reach large enough for a
 ///    far value to settle (1-Lipschitz) the points of the next pass around it without a search.
 ///    A point of a later pass also tries the primitives found at its neighbours on L_{p+1}: one
-///    that contains it settles its sign, and the smallest value seeds the search.
+///    that contains it settles its sign, and the smallest value seeds the search. A point of the
+///    last pass that a neighbour's value proves outside is not searched here (kUnsearched).
 std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
                                const KnownValues& known, const CancelPoll& poll) {
   std::vector<Hit> values(corners.size());
   const double step = grid.step;
-  const double reach = step * (1 + 1e-9) + grid.slack;
   for (int pass = kLastLevel; pass >= 0; --pass) {
     const double stride = double(std::uint64_t{1} << pass);
     const double pass_reach =
-        pass == 0 ? reach : (step + 0.5 * stride * std::sqrt(3.0) * step) * (1 + 1e-9) + grid.slack;
+        pass == 0 ? last_pass_reach(grid) : (step + 0.5 * stride * std::sqrt(3.0) * step) * (1 + 1e-9) + grid.slack;
     tbb::parallel_for(std::size_t{0}, corners.size(), [&](std::size_t c) {
       poll.at(c);
       if (lattice_of(corners[c]) != pass) return;
@@ -243,9 +254,16 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
       Hit start{kInf, -1};
       if (pass < kLastLevel) {
         bool settled = false;
-        start = from_parents(bvh, corners, values, corners[c], z, step, pass, pass_reach, settled);
+        double outside = -kInf;
+        start = from_parents(bvh, corners, values, corners[c], z, step, pass, pass_reach, settled, outside);
         if (settled) {
           values[c] = start;
+          return;
+        }
+        // Outside by the Lipschitz bound: the last pass needs no more unless the point ends a
+        // crossing edge (exact_crossing_ends).
+        if (pass == 0 && start.d >= 0 && outside > grid.slack) {
+          values[c] = {outside, kUnsearched};
           return;
         }
       }
@@ -292,6 +310,30 @@ std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, 
   return crossings;
 }
 
+/// 3. (cont.) The exact value and primitive at each crossing edge's outside end left unsearched
+///    by corner_values: the search it would have made, from the same seed, so the boundary points
+///    are those of searching every grid point. Most such points end no crossing edge.
+void exact_crossing_ends(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
+                         const std::vector<Crossing>& crossings, std::vector<Hit>& values, const CancelPoll& poll) {
+  std::vector<std::uint64_t> ends;
+  for (const Crossing& e : crossings)
+    if (values[e[0]].prim == kUnsearched) ends.push_back(e[0]);
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  std::vector<Hit> exact(ends.size());
+  const double reach = last_pass_reach(grid);
+  tbb::parallel_for(std::size_t{0}, ends.size(), [&](std::size_t e) {
+    poll.at(e);
+    const std::uint64_t key = corners[ends[e]];
+    const Vec3 z = grid.point(key);
+    bool settled = false;
+    double outside = -kInf;
+    const Hit start = from_parents(bvh, corners, values, key, z, grid.step, 0, reach, settled, outside);
+    exact[e] = bvh.query(z, reach, 0.0, -kInf, start);
+  });
+  for (std::size_t e = 0; e < ends.size(); ++e) values[ends[e]] = exact[e];
+}
+
 /// 3. (cont.) A crossing edge's point is the closest point of E to its outside end a (exactly on
 ///    ∂E: a is outside, so the closest point of the nearest primitive is the closest point of the
 ///    union), with outward normal (a − c*)/|a − c*|.
@@ -335,9 +377,12 @@ EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::
   const Grid grid(bvh, step);
   KnownValues known;
   const std::vector<std::uint64_t> corners = corner_keys(narrow_band(bvh, grid, known, report, poll), poll);
-  const std::vector<Hit> values = corner_values(bvh, grid, corners, known, poll);
+  std::vector<Hit> values = corner_values(bvh, grid, corners, known, poll);
+  report(0.8);
+  const std::vector<Crossing> crossings = crossing_edges(corners, values, poll);
+  exact_crossing_ends(bvh, grid, corners, crossings, values, poll);
   report(0.9);
-  crossing_points(bvh, grid, corners, values, crossing_edges(corners, values, poll), out, poll);
+  crossing_points(bvh, grid, corners, values, crossings, out, poll);
   report(1.0);
   return out;
 }

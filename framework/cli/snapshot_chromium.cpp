@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -105,6 +106,15 @@ BrowserRun run_browser(const fs::path& browser, const std::vector<std::string>& 
   text << in.rdbuf();
   run.log = text.str();
   return run;
+}
+
+std::string file_url(const fs::path& file) {
+  std::string url = "file://";
+  for (unsigned char c : fs::absolute(file).lexically_normal().string()) {
+    if (std::isalnum(c) || std::strchr("/-._~", c)) url += static_cast<char>(c);
+    else url += fmt::format("%{:02X}", c);
+  }
+  return url;
 }
 
 std::vector<std::string> page_errors(const std::string& log) {

@@ -25,6 +25,10 @@ std::vector<std::string> headless_flags(const std::filesystem::path& profile, in
 BrowserRun run_browser(const std::filesystem::path& browser, const std::vector<std::string>& args,
                        const std::filesystem::path& log_file, double timeout_seconds);
 
+/// The file:// URL of `file` (made absolute), percent-encoded so that a space, '#' or '?' in a
+/// folder name is part of the path.
+std::string file_url(const std::filesystem::path& file);
+
 /// The lines of `log` where the page reported an error (viewer.js prefixes them with
 /// "medax-viewer error:"; an uncaught exception reads "Uncaught ...").
 std::vector<std::string> page_errors(const std::string& log);

@@ -43,7 +43,7 @@ void take_picture(const fs::path& page, const SceneSettings& settings, int width
   fs::remove(target);
   std::vector<std::string> flags = headless_flags(scratch / "profile", width, height);
   flags.push_back("--screenshot=" + target.string());
-  flags.push_back("file://" + fs::absolute(page).string() + page_query(settings, width, height));
+  flags.push_back(file_url(page) + page_query(settings, width, height));
   const BrowserRun run = run_browser(browser, flags, scratch / "browser.log", timeout_seconds);
   const std::vector<std::string> errors = page_errors(run.log);
   if (!errors.empty()) throw std::runtime_error(fmt::format("the viewer page reported: {}", errors.front()));

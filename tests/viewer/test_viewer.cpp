@@ -152,7 +152,8 @@ TEST_CASE("medax snapshot refuses a field the run does not have and lists the fi
 
 TEST_CASE("medax view on an experiment writes results.html: a sortable row, a picture and a viewer per job",
           "[viewer][experiment]") {
-  const auto dir = scratch_dir("viewer_experiment") / "experiment";
+  // A space, '#' and '%' in the folder's name stay part of the path in the pages' file:// URLs.
+  const auto dir = scratch_dir("viewer_experiment") / "experiment #1 100%";
   const auto run = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_experiment.yaml").string() +
                              "' --out '" + dir.string() + "' --quiet");
   INFO(run.out << run.err);

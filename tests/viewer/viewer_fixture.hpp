@@ -95,7 +95,7 @@ class Browser {
 
  private:
   static std::string url(const std::filesystem::path& page, const std::string& query) {
-    return "file://" + std::filesystem::absolute(page).string() + "?" + query;
+    return medax::cli::file_url(page) + "?" + query;
   }
   medax::cli::BrowserRun launch(const std::vector<std::string>& flags) {
     const auto run = medax::cli::run_browser(medax::cli::find_chromium(), flags, dir_ / "browser.log", 25);

@@ -4,15 +4,22 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/Spatial_lock_grid_3.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/hilbert_sort.h>
+#include <CGAL/property_map.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 #include <stdexcept>
 #include <tuple>
 
@@ -25,10 +32,25 @@ using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, K>;
 // Each cell stores its index in the output (-1 for infinite cells), so neighbours are read
 // directly instead of through a handle -> index map.
 using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int64_t, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Sequential_tag>;
-using Triangulation = CGAL::Delaunay_triangulation_3<K, Tds>;
+// Small inputs: CGAL's sequential range insertion, as medax always did (the exact results the
+// plugins' tests were written against).
+using SequentialTriangulation =
+    CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Sequential_tag>>;
+// Large inputs: a concurrent data structure, where threads insert points at once, each locking
+// the cells of its conflict zone through a grid of locks over the bounding box.
+using LockGrid = CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>;
+using Triangulation = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>,
+                                                     CGAL::Default, LockGrid>;
 
 using ExactKernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+
+/// From this many points on, the concurrent triangulation; below, the sequential one (faster
+/// there, and its corner order is the one the plugins' small test cases were written against).
+constexpr std::size_t kConcurrentFrom = 50000;
+/// Rounds smaller than this are inserted by one thread: locking costs more than it gains there.
+constexpr std::size_t kParallelRound = 20000;
+/// Cells per axis of the lock grid (CGAL's Mesh_3 default).
+constexpr int kLockGridCells = 50;
 
 /// Circumcentre of (a, b, c, d), equidistant from the four corners up to the final rounding.
 /// The double construction is exact enough for well-shaped cells; for nearly flat ones (e.g.
@@ -47,6 +69,20 @@ K::Point_3 robust_circumcenter(const K::Point_3& a, const K::Point_3& b, const K
   return K::Point_3(CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z()));
 }
 
+/// Canonical corner order of a positively oriented cell: corner positions sorted by point index,
+/// with the last two swapped when that sort is an odd permutation (the orientation stays positive).
+/// The concurrent build leaves corners rotated by its history; this order does not depend on it.
+/// (The sequential build's history is fixed, so its order is kept as it is.)
+std::array<int, 4> canonical_corners(const std::array<Index, 4>& v, bool canonical) {
+  if (!canonical) return {0, 1, 2, 3};
+  std::array<int, 4> order{0, 1, 2, 3};
+  int swaps = 0;
+  for (int i = 1; i < 4; ++i)  // insertion sort, counting transpositions
+    for (int j = i; j > 0 && v[order[j]] < v[order[j - 1]]; --j, ++swaps) std::swap(order[j], order[j - 1]);
+  if (swaps % 2) std::swap(order[2], order[3]);
+  return order;
+}
+
 /// A cell's corners sorted, packed into one 128-bit key for a fast deterministic sort.
 struct CellKey {
   std::uint64_t hi, lo;
@@ -54,15 +90,16 @@ struct CellKey {
   bool operator<(const CellKey& o) const { return hi != o.hi ? hi < o.hi : lo < o.lo; }
 };
 
-DelaunayTetrahedralization extract(Triangulation& dt, bool parallel) {
+template <typename Triangulation>
+DelaunayTetrahedralization extract(Triangulation& dt, bool parallel, bool canonical) {
   if (dt.dimension() < 3)
     throw std::invalid_argument("the points are coplanar or collinear: a 3D Delaunay tetrahedralization needs "
                                 "points spanning three dimensions");
-  const std::size_t n = dt.number_of_finite_cells();
-  std::vector<Triangulation::Cell_handle> cells;
-  cells.reserve(n);
+  std::vector<typename Triangulation::Cell_handle> cells;
+  cells.reserve(dt.number_of_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = DelaunayTetrahedralization::kInfinite;
+  const std::size_t n = cells.size();
 
   // Deterministic cell order, whatever the insertion history: sort by sorted corners.
   std::vector<CellKey> keys(n);
@@ -88,33 +125,32 @@ DelaunayTetrahedralization extract(Triangulation& dt, bool parallel) {
   out.circumradii.resize(n);
   const auto fill = [&](std::size_t i) {
     const auto c = cells[keys[i].cell];
+    const std::array<Index, 4> v{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    const std::array<int, 4> order = canonical_corners(v, canonical);
     for (int k = 0; k < 4; ++k) {
-      out.cells[i][k] = c->vertex(k)->info();
-      out.neighbours[i][k] = c->neighbor(k)->info();  // kInfinite for infinite cells
+      out.cells[i][k] = v[order[k]];
+      out.neighbours[i][k] = c->neighbor(order[k])->info();  // kInfinite for infinite cells
     }
-    const K::Point_3 cc = robust_circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
-                                              c->vertex(3)->point());
+    const auto& p0 = c->vertex(order[0])->point();
+    const K::Point_3 cc =
+        robust_circumcenter(p0, c->vertex(order[1])->point(), c->vertex(order[2])->point(), c->vertex(order[3])->point());
     out.circumcentres[i] = Vec3(cc.x(), cc.y(), cc.z());
-    out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, c->vertex(0)->point()));
+    out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, p0));
   };
   if (parallel) tbb::parallel_for(std::size_t{0}, n, fill);
   else for (std::size_t i = 0; i < n; ++i) fill(i);
   return out;
 }
 
-}  // namespace
-
-DelaunayTetrahedralization delaunay_tetrahedralize(const std::vector<Vec3>& points, const DelaunayOptions& options) {
-  if (points.size() >= (std::size_t{1} << 32) - 1)
-    throw std::invalid_argument("delaunay_tetrahedralize: too many points for 32-bit indices");
-  // Merge exact duplicates first: each distinct position is represented by its smallest index.
+/// Each point's representative: exact duplicates merge into the one with the smallest index.
+std::vector<Index> merge_duplicates(const std::vector<Vec3>& points, bool parallel) {
   std::vector<Index> by_position(points.size());
   std::iota(by_position.begin(), by_position.end(), 0);
   const auto less = [&](Index a, Index b) {
     const Vec3 &p = points[a], &q = points[b];
     return std::tie(p.x(), p.y(), p.z(), a) < std::tie(q.x(), q.y(), q.z(), b);
   };
-  if (options.parallel) tbb::parallel_sort(by_position.begin(), by_position.end(), less);
+  if (parallel) tbb::parallel_sort(by_position.begin(), by_position.end(), less);
   else std::sort(by_position.begin(), by_position.end(), less);
   std::vector<Index> representative(points.size());
   for (std::size_t k = 0; k < by_position.size(); ++k) {
@@ -122,27 +158,132 @@ DelaunayTetrahedralization delaunay_tetrahedralize(const std::vector<Vec3>& poin
     const bool duplicate = k > 0 && points[i] == points[by_position[k - 1]];
     representative[i] = duplicate ? representative[by_position[k - 1]] : i;
   }
-  std::vector<std::pair<K::Point_3, Index>> input;
+  return representative;
+}
+
+/// Insertion order: a biased randomized insertion order (Amenta, Choi & Rote 2003), as CGAL's
+/// spatial_sort makes: a fixed-seed shuffle cut into rounds, each 8 times the one before, each
+/// sorted along a Hilbert curve. Returns the order and where each round begins (and the end).
+std::pair<std::vector<std::size_t>, std::vector<std::size_t>> brio_order(const std::vector<K::Point_3>& points,
+                                                                         bool parallel) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937_64 rng(0x5eed);
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng() % i]);
+  std::vector<std::size_t> bounds{order.size()};
+  while (bounds.back() > 1000) bounds.push_back(bounds.back() / 8);
+  bounds.push_back(0);
+  std::reverse(bounds.begin(), bounds.end());
+  using Traits = CGAL::Spatial_sort_traits_adapter_3<K, CGAL::Pointer_property_map<K::Point_3>::const_type>;
+  const Traits traits(CGAL::make_property_map(points));
+  for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
+    if (parallel)
+      CGAL::hilbert_sort<CGAL::Parallel_tag>(order.begin() + bounds[r], order.begin() + bounds[r + 1], traits);
+    else
+      CGAL::hilbert_sort(order.begin() + bounds[r], order.begin() + bounds[r + 1], traits);
+  }
+  return {std::move(order), std::move(bounds)};
+}
+
+/// Inserts points[order[begin..end)] with several threads, each holding the locks of its
+/// conflict zone and retrying a point when another thread holds one of them (as CGAL's own
+/// parallel range insertion, which inserts its whole order at once where we go round by round).
+void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
+                         const std::vector<std::size_t>& order, std::size_t begin, std::size_t end,
+                         Triangulation::Vertex_handle hint) {
+  tbb::enumerable_thread_specific<Triangulation::Vertex_handle> hints(hint);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& range) {
+    Triangulation::Vertex_handle& local = hints.local();
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const K::Point_3& p = points[order[i]];
+      for (bool done = false; !done;) {
+        if (dt.try_lock_vertex(local) && dt.try_lock_point(p)) {
+          bool locked = false;
+          const Triangulation::Vertex_handle v = dt.insert(p, local, &locked);
+          dt.unlock_all_elements();
+          if (locked) {
+            v->info() = infos[order[i]];
+            local = v;
+            done = true;
+          }
+        } else {
+          dt.unlock_all_elements();
+        }
+      }
+    }
+  });
+}
+
+/// The Delaunay triangulation of the points, vertex infos set. Small rounds of the insertion
+/// order go in sequentially, large ones concurrently once the triangulation is 3D; the
+/// triangulation is the same either way (CGAL breaks cospherical ties by a symbolic
+/// perturbation, which does not depend on the insertion order).
+void triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
+                 bool parallel) {
+  const auto [order, bounds] = brio_order(points, parallel);
+  // On one thread, locking only costs (about 15%): insert everything sequentially.
+  parallel = parallel && tbb::this_task_arena::max_concurrency() > 1;
+  Triangulation::Vertex_handle hint;
+  for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
+    const std::size_t begin = bounds[r], end = bounds[r + 1];
+    if (parallel && end - begin >= kParallelRound && dt.dimension() == 3) {
+      insert_concurrently(dt, points, infos, order, begin, end, hint);
+      continue;
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      hint = dt.insert(points[order[i]], hint);
+      hint->info() = infos[order[i]];
+    }
+  }
+}
+
+CGAL::Bbox_3 bounding_box(const std::vector<K::Point_3>& points) {
+  CGAL::Bbox_3 box;
+  for (const K::Point_3& p : points) box += p.bbox();
+  return box;
+}
+
+DelaunayTetrahedralization tetrahedralize(const std::vector<Vec3>& points, const DelaunayOptions& options) {
+  if (points.size() >= (std::size_t{1} << 32) - 1)
+    throw std::invalid_argument("delaunay_tetrahedralize: too many points for 32-bit indices");
+  const std::vector<Index> representative = merge_duplicates(points, options.parallel);
+  std::vector<K::Point_3> input;
   input.reserve(points.size());
   std::vector<Index> vertex_point;
   vertex_point.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     if (representative[i] == i) {
-      input.emplace_back(K::Point_3(points[i].x(), points[i].y(), points[i].z()), static_cast<Index>(i));
+      input.emplace_back(points[i].x(), points[i].y(), points[i].z());
       vertex_point.push_back(static_cast<Index>(i));
     }
   std::vector<Index> point_vertex(points.size());
   for (std::size_t v = 0; v < vertex_point.size(); ++v) point_vertex[vertex_point[v]] = static_cast<Index>(v);
   for (std::size_t i = 0; i < points.size(); ++i) point_vertex[i] = point_vertex[representative[i]];
 
-  // Sequential insertion (CGAL sorts the range along a Hilbert curve first). CGAL's parallel
-  // insertion was measured 5-8x slower than this on 2 shared cores (lock contention), from 26k
-  // to 1M points, so it is not used; the per-cell work below is parallel.
-  Triangulation dt(input.begin(), input.end());
-  DelaunayTetrahedralization out = extract(dt, options.parallel);
+  DelaunayTetrahedralization out;
+  if (input.size() < kConcurrentFrom) {
+    std::vector<std::pair<K::Point_3, Index>> with_info(input.size());
+    for (std::size_t v = 0; v < input.size(); ++v) with_info[v] = {input[v], vertex_point[v]};
+    SequentialTriangulation dt(with_info.begin(), with_info.end());  // sorted along a Hilbert curve first
+    out = extract(dt, options.parallel, false);
+  } else {
+    // The lock grid is only used when a round is inserted concurrently.
+    LockGrid locks(bounding_box(input), kLockGridCells);
+    Triangulation dt(K(), options.parallel ? &locks : nullptr);
+    triangulate(dt, input, vertex_point, options.parallel);
+    out = extract(dt, options.parallel, true);
+  }
   out.vertex_point = std::move(vertex_point);
   out.point_vertex = std::move(point_vertex);
   return out;
+}
+
+}  // namespace
+
+DelaunayTetrahedralization delaunay_tetrahedralize(const std::vector<Vec3>& points, const DelaunayOptions& options) {
+  if (options.max_threads <= 0) return tetrahedralize(points, options);
+  tbb::task_arena arena(options.max_threads);
+  return arena.execute([&] { return tetrahedralize(points, options); });
 }
 
 DelaunayTetrahedralization delaunay_tetrahedralize_alongside(const std::vector<Vec3>& points,

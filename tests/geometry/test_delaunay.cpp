@@ -197,3 +197,69 @@ TEST_CASE("Delaunay alongside other work: both run and failures of either propag
     CHECK(flat_ran);  // the other work was waited for before the error left
   }
 }
+
+namespace {
+
+/// Every array of the two tetrahedralizations is identical.
+void check_identical(const DelaunayTetrahedralization& a, const DelaunayTetrahedralization& b) {
+  CHECK(a.vertex_point == b.vertex_point);
+  CHECK(a.point_vertex == b.point_vertex);
+  CHECK(a.cells == b.cells);
+  CHECK(a.neighbours == b.neighbours);
+  CHECK(a.circumcentres == b.circumcentres);
+  CHECK(a.circumradii == b.circumradii);
+}
+
+/// The tetrahedralization with 1 and 2 threads and without TBB (inputs of 50k points or more take
+/// the concurrent path, whose last insertion rounds go in concurrently).
+void check_thread_independent(const std::vector<Vec3>& p) {
+  const auto two = delaunay_tetrahedralize(p, {true, 2});
+  const auto one = delaunay_tetrahedralize(p, {true, 1});
+  const auto again = delaunay_tetrahedralize(p, {true, 2});
+  const auto sequential = delaunay_tetrahedralize(p, {false});
+  check_identical(two, one);
+  check_identical(two, again);
+  check_identical(two, sequential);
+}
+
+}  // namespace
+
+TEST_CASE("Concurrent Delaunay of random points: valid, identical across runs and thread counts",
+          "[geometry][delaunay]") {
+  const auto p = random_points(60000, 13);
+  const auto dt = delaunay_tetrahedralize(p, {true, 2});
+  check_structure(p, dt);
+  // Canonical corners: the smallest index first, positively oriented.
+  for (const auto& c : dt.cells) CHECK(*std::min_element(c.begin(), c.end()) == c[0]);
+  check_thread_independent(p);
+}
+
+TEST_CASE("Concurrent Delaunay of a cubic lattice (every cube cospherical): one answer whatever the threads",
+          "[geometry][delaunay]") {
+  // 38^3 lattice points: each unit cube's 8 corners are cospherical, so the tetrahedralization is
+  // only defined by CGAL's symbolic perturbation; it must not depend on who inserted what first.
+  std::vector<Vec3> p;
+  for (int i = 0; i < 38; ++i)
+    for (int j = 0; j < 38; ++j)
+      for (int k = 0; k < 38; ++k) p.emplace_back(i, j, k);
+  const auto dt = delaunay_tetrahedralize(p, {true, 2});
+  double volume = 0;
+  std::size_t flat = 0;
+  for (const auto& c : dt.cells) {
+    const double v = signed_volume(p, c);
+    volume += v;
+    flat += !(v > 0);
+  }
+  CHECK(flat == 0);
+  CHECK(volume == Approx(37.0 * 37.0 * 37.0).epsilon(1e-9));
+  check_thread_independent(p);
+}
+
+TEST_CASE("Concurrent Delaunay of surface samples (a sphere): identical across thread counts", "[geometry][delaunay]") {
+  // Points on a surface, as the Voronoi methods triangulate them: nearly cospherical everywhere.
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> gauss;
+  std::vector<Vec3> p(60000);
+  for (Vec3& x : p) x = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  check_thread_independent(p);
+}

@@ -1,7 +1,12 @@
 #pragma once
 // Delaunay tetrahedralization of surface points (CGAL), returned as plain arrays so callers never
-// include CGAL. Insertion is sequential (CGAL's parallel insertion loses on 2 shared cores); the
-// per-cell work (ordering, neighbours, circumcentres) runs in parallel with TBB.
+// include CGAL. From 50k points on, the insertion is concurrent (CGAL's Parallel_tag
+// triangulation with a grid of locks, in a biased randomized order whose large rounds go in
+// concurrently); below, it is CGAL's sequential range insertion. The per-cell work (ordering,
+// neighbours, circumcentres) is parallel in both. The result does not depend on the number of
+// threads: cells are numbered by their sorted corners, the concurrent path gives corners in a
+// canonical order (smallest index first, positively oriented), and CGAL breaks cospherical ties
+// by a symbolic perturbation that does not depend on the insertion order.
 #include <medax/geometry.hpp>
 
 #include <functional>
@@ -29,7 +34,9 @@ struct DelaunayTetrahedralization {
 };
 
 struct DelaunayOptions {
-  bool parallel = true;  ///< TBB-parallel cell ordering and circumcentres (same result, faster)
+  bool parallel = true;  ///< TBB-parallel insertion and per-cell work (same result, faster)
+  /// When > 0, at most this many threads (a TBB arena of that size); 0: TBB's default.
+  int max_threads = 0;
 };
 
 /// Throws std::invalid_argument when the points span less than three dimensions.

@@ -180,7 +180,8 @@
     const m = new THREE.Matrix4();
     for (let i = 0; i < vertexCount; ++i) {
       const r = medial.radii[i];
-      m.makeScale(r, r, r).setPosition(medial.positions[3 * i], medial.positions[3 * i + 1], medial.positions[3 * i + 2]);
+      const p = medial.positions;
+      m.makeScale(r, r, r).setPosition(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
       allSpheres.setMatrixAt(i, m);
     }
   }
@@ -208,7 +209,8 @@
     }
     return b;
   }
-  const box = layers.surface ? new THREE.Box3().setFromBufferAttribute(layers.surface.object.geometry.attributes.position)
+  const box = layers.surface
+    ? new THREE.Box3().setFromBufferAttribute(layers.surface.object.geometry.attributes.position)
     : percentileBox(medial.positions);
   if (box.isEmpty()) box.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
   const bounds = box.getBoundingSphere(new THREE.Sphere());
@@ -251,7 +253,8 @@
     const curveColour = on('vertex') ? (k) => colour(field.values[cur[k]])
       : on('edge') ? (k) => colour(field.values[k >> 1]) : plain('curves');
     paint(layers.curves.object.geometry.attributes.color, cur.length, curveColour);
-    paint(pointGeometry.attributes.color, vertexCount, on('vertex') ? (i) => colour(field.values[i]) : plain('vertices'));
+    paint(pointGeometry.attributes.color, vertexCount,
+      on('vertex') ? (i) => colour(field.values[i]) : plain('vertices'));
     showLegend(field, range);
     render();
   }
@@ -275,8 +278,9 @@
       `rgb(${c.map((x) => Math.round(255 * x)).join(',')}) ${(100 * i / (kViridis.length - 1)).toFixed(0)}%`);
     document.getElementById('legend-bar').style.background = field.label ? labelSwatches(range)
       : `linear-gradient(90deg, ${stops.join(', ')})`;
-    document.getElementById('legend-min').textContent = shortNumber(range[0]);
-    document.getElementById('legend-max').textContent = shortNumber(range[1]);
+    const tick = field.label ? (v) => String(Math.round(v)) : shortNumber;
+    document.getElementById('legend-min').textContent = tick(range[0]);
+    document.getElementById('legend-max').textContent = tick(range[1]);
   }
 
   // ---- picking: click a medial vertex (or a triangle/curve near it) ----
@@ -310,7 +314,7 @@
     pickedSphere.visible = true;
     const lines = [`vertex ${v}`, `centre ${centre.toArray().map((x) => x.toPrecision(6)).join(' ')}`,
       `radius ${r.toPrecision(6)}`];
-    for (const f of fields) if (f.element === 'vertex') lines.push(`${f.name} ${f.values[v]}`);
+    for (const f of fields) if (f.element === 'vertex' && f.name !== 'radius') lines.push(`${f.name} ${f.values[v]}`);
     info.textContent = lines.join('\n');
     render();
   }

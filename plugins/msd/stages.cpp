@@ -49,7 +49,7 @@ void MsdStage::declare(ParamBinder& p) {
   declare_construction(p);
   p.add("reconstruction", reconstruction_, {{"sdf", ReconstructionMode::Sdf}, {"none", ReconstructionMode::None}},
         "Ŝ = ∪ T_P by a signed-distance grid meshed by OpenVDB (published for the evaluation stages, written as "
-        "<id>_reconstruction.off), or not built");
+        "<id>_reconstruction.off; costs about as much as the optimisation, so off unless asked), or not built");
   p.add("reconstruction_resolution", sdf_.resolution,
         "voxels of Ŝ's grid across the longest side of the primitives' bounding box (paper: 256)")
       .range(8, 4096);

@@ -34,7 +34,7 @@ class MsdStage : public SimplificationStage {
   void publish_reconstruction(const Shape& shape, const Diagram& best, Summary& summary, Context& ctx) const;
 
   OptimisationOptions options_;
-  ReconstructionMode reconstruction_ = ReconstructionMode::Sdf;
+  ReconstructionMode reconstruction_ = ReconstructionMode::None;
   SdfOptions sdf_;
   bool write_primitives_ = true;
 };

@@ -33,6 +33,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   params.set("max_iterations", 10LL);
   params.set("search_sphere_vertices", 100LL);
   params.set("sphere_vertices", 200LL);
+  params.set("reconstruction", std::string("sdf"));
   params.set("reconstruction_resolution", 64LL);
   stage.configure(params);
   stage.set_id("msd");
@@ -53,7 +54,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   CHECK_THAT(ctx.files["msd_msd.json"], Catch::Contains("\"N_d\""));
   REQUIRE(ctx.files.count("msd_primitives.ply"));
   CHECK_THAT(ctx.files["msd_primitives.ply"], Catch::Contains("property int primitive"));
-  // Ŝ (on by default) and the MSD counts for the evaluation stages.
+  // Ŝ and the MSD counts for the evaluation stages.
   const ReconstructedSurface* rebuilt = ctx.data().find(kReconstructedSurface);
   REQUIRE(rebuilt);
   CHECK(rebuilt->surface.faces.size() > 100);

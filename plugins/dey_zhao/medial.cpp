@@ -639,9 +639,22 @@ InnerSelection choose_inner(const InnerSetup& setup, bool has_normals, MedialRep
   return InnerSelection::None;
 }
 
+/// Whether every Voronoi vertex of the facet dual to `s` lies within the points' bounding box
+/// [lo, hi]: the inner medial axis does, while a nearly flat cell on the surface has its
+/// circumcentre far off along the normal, on either side (Normals has no mesh to reject it).
+bool facet_in_box(const Selected& s, const Selection& selection, const DelaunayTetrahedralization& dt,
+                  const Vec3& lo, const Vec3& hi) {
+  for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+    const Vec3& c = dt.circumcentres[selection.rings[s.ring_begin + k]];
+    if ((c.array() < lo.array()).any() || (c.array() > hi.array()).any()) return false;
+  }
+  return true;
+}
+
 /// F: 1 for each selected edge that `inner` keeps.
 std::vector<char> keep_inner(InnerSelection inner, const Renumbered& points, const Selection& selection,
-                             const std::vector<char>& cell_inside, const InnerSetup& setup, bool parallel) {
+                             const std::vector<char>& cell_inside, const InnerSetup& setup,
+                             const DelaunayTetrahedralization& dt, bool parallel) {
   const std::vector<Vec3>& P = points.P;
   const std::vector<Selected>& selected = selection.selected;
   std::vector<char> keep(selected.size(), 1);
@@ -663,10 +676,12 @@ std::vector<char> keep_inner(InnerSelection inner, const Renumbered& points, con
     }
     case InnerSelection::Normals: {
       const auto& N = points.normals;
+      Vec3 lo = P[dt.vertex_point[0]], hi = lo;
+      for (Index x : dt.vertex_point) lo = lo.cwiseMin(P[x]), hi = hi.cwiseMax(P[x]);
       for (std::size_t i = 0; i < selected.size(); ++i) {
         const Selected& s = selected[i];
         const Vec3 d = P[s.q] - P[s.p];
-        keep[i] = N[s.p].dot(d) < 0 && N[s.q].dot(d) > 0;
+        keep[i] = N[s.p].dot(d) < 0 && N[s.q].dot(d) > 0 && facet_in_box(s, selection, dt, lo, hi);
       }
       break;
     }
@@ -685,7 +700,7 @@ std::vector<char> select_inner(const Renumbered& points, const MedialInput& inpu
     inner = InnerSelection::DelaunaySurface;
   if (inner == InnerSelection::Auto) inner = choose_inner(setup, points.has_normals, info);
   info.inner_used = inner;
-  std::vector<char> keep = keep_inner(inner, points, selection, cell_inside, setup, parallel);
+  std::vector<char> keep = keep_inner(inner, points, selection, cell_inside, setup, dt, parallel);
   for (char k : keep) info.outer += !k;
   return keep;
 }

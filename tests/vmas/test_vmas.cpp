@@ -561,24 +561,33 @@ TEST_CASE("vmas commutes with rigid motions") {
 
 TEST_CASE("vmas gives identical results across thread counts") {
   const SurfaceMesh mesh = make_blob();
-  const auto run_with = [&](int threads) {
-    // global_control caps the threads; an arena of that size makes TBB use them even on a
-    // machine with fewer cores.
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-    tbb::task_arena arena(threads);
-    return arena.execute([&] {
-      const VmasSolver s = solve(mesh, count_options(30));
-      return std::make_pair(s.complex(true), s.assignment());
-    });
-  };
-  const auto one = run_with(1);
-  for (const int threads : {2, 4}) {
-    const auto many = run_with(threads);
-    CHECK(one.first.centres == many.first.centres);
-    CHECK(one.first.radii == many.first.radii);
-    CHECK(one.first.edges == many.first.edges);
-    CHECK(one.first.faces == many.first.faces);
-    CHECK(one.second == many.second);
+  // The defaults, and the authors' choices together (each a different code path).
+  VmasOptions authors = count_options(30);
+  authors.gn_steps = GaussNewtonSteps::Raw;
+  authors.partition_sqem = PartitionSqem::VertexNormal;
+  authors.stop_test = StopTest::AfterSplit;
+  authors.initial_sphere = InitialSphere::BoxCorner;
+  authors.sqem_rows = SqemRows::AuthorCode;
+  for (const VmasOptions& options : {count_options(30), authors}) {
+    const auto run_with = [&](int threads) {
+      // global_control caps the threads; an arena of that size makes TBB use them even on a
+      // machine with fewer cores.
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      tbb::task_arena arena(threads);
+      return arena.execute([&] {
+        const VmasSolver s = solve(mesh, options);
+        return std::make_pair(s.complex(true), s.assignment());
+      });
+    };
+    const auto one = run_with(1);
+    for (const int threads : {2, 4}) {
+      const auto many = run_with(threads);
+      CHECK(one.first.centres == many.first.centres);
+      CHECK(one.first.radii == many.first.radii);
+      CHECK(one.first.edges == many.first.edges);
+      CHECK(one.first.faces == many.first.faces);
+      CHECK(one.second == many.second);
+    }
   }
 }
 

@@ -5,9 +5,12 @@
 #include <medax/services/kdtree.hpp>
 #include <medax/services/sampling.hpp>
 
+#include "poisson_neighbours.hpp"
+
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -15,7 +18,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 namespace medax::services {
 
@@ -32,20 +34,22 @@ struct NormalRule {
   bool agree(const Vec3& a, const Vec3& b) const { return min_dot <= -1.0 || a.dot(b) > min_dot; }
 };
 
-/// A binary max-heap over candidate weights that can lower a weight in place. Ties go to the
-/// larger index, so the order is fully determined.
+/// A 4-ary max-heap over candidate weights that can lower a weight in place. Ties go to the
+/// larger index, so the order of the pops is fully determined (whatever the heap's shape). Each
+/// entry carries its weight and a node's four children share a cache line, so sifting reads
+/// little memory.
 class EliminationHeap {
  public:
-  explicit EliminationHeap(const std::vector<double>& weights) : weight_(weights), position_(weights.size()) {
+  explicit EliminationHeap(const std::vector<double>& weights) : position_(weights.size()) {
     heap_.resize(weights.size());
-    for (std::size_t i = 0; i < heap_.size(); ++i) heap_[i] = static_cast<Index>(i), position_[i] = i;
-    for (std::size_t i = heap_.size() / 2; i-- > 0;) sift_down(i);
+    for (std::size_t i = 0; i < heap_.size(); ++i) heap_[i] = {weights[i], static_cast<Index>(i)}, position_[i] = static_cast<Index>(i);
+    for (std::size_t i = heap_.size() / kArity + 1; i-- > 0;) sift_down(i);
   }
-  bool empty() const { return heap_.empty(); }
   std::size_t size() const { return heap_.size(); }
   Index pop() {
-    const Index top = heap_.front();
-    move(heap_.size() - 1, 0);
+    const Index top = heap_.front().index;
+    heap_.front() = heap_.back();
+    position_[heap_.front().index] = 0;
     heap_.pop_back();
     if (!heap_.empty()) sift_down(0);
     position_[top] = kRemoved;
@@ -53,33 +57,38 @@ class EliminationHeap {
   }
   bool contains(Index i) const { return position_[i] != kRemoved; }
   void decrease(Index i, double by) {
-    weight_[i] -= by;
-    sift_down(position_[i]);
+    const std::size_t at = position_[i];
+    heap_[at].weight -= by;
+    sift_down(at);
   }
 
  private:
-  static constexpr std::size_t kRemoved = std::numeric_limits<std::size_t>::max();
-  bool above(Index a, Index b) const { return weight_[a] > weight_[b] || (weight_[a] == weight_[b] && a > b); }
-  void move(std::size_t from, std::size_t to) {
-    heap_[to] = heap_[from];
-    position_[heap_[to]] = to;
-  }
+  struct alignas(16) Entry {
+    double weight;
+    Index index;
+    bool above(const Entry& o) const { return weight > o.weight || (weight == o.weight && index > o.index); }
+  };
+  static constexpr std::size_t kArity = 4;
+  static constexpr Index kRemoved = std::numeric_limits<Index>::max();
   void sift_down(std::size_t i) {
-    const Index item = heap_[i];
+    const Entry item = heap_[i];
+    const std::size_t n = heap_.size();
     for (;;) {
-      std::size_t child = 2 * i + 1;
-      if (child >= heap_.size()) break;
-      if (child + 1 < heap_.size() && above(heap_[child + 1], heap_[child])) ++child;
-      if (!above(heap_[child], item)) break;
-      move(child, i);
-      i = child;
+      const std::size_t first = kArity * i + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      for (std::size_t c = first + 1; c < std::min(first + kArity, n); ++c)
+        if (heap_[c].above(heap_[best])) best = c;
+      if (!heap_[best].above(item)) break;
+      heap_[i] = heap_[best];
+      position_[heap_[i].index] = static_cast<Index>(i);
+      i = best;
     }
     heap_[i] = item;
-    position_[item] = i;
+    position_[item.index] = static_cast<Index>(i);
   }
-  std::vector<double> weight_;
-  std::vector<std::size_t> position_;
-  std::vector<Index> heap_;
+  std::vector<Index> position_;
+  std::vector<Entry> heap_;
 };
 
 /// Area of each sample: its Voronoi cell among its neighbours (with agreeing normals) in its
@@ -159,8 +168,18 @@ double poisson_packing_distance(double area, std::size_t count) {
   return 2.0 * std::sqrt(area / (2.0 * std::sqrt(3.0) * static_cast<double>(count)));
 }
 
-OrientedSamples sample_poisson_count(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng,
-                                     const PoissonDiskOptions& options) {
+namespace {
+
+/// Runs `f` with at most `max_threads` TBB threads when that is positive.
+template <typename F>
+auto with_threads(int max_threads, const F& f) {
+  if (max_threads <= 0) return f();
+  tbb::task_arena arena(max_threads);
+  return arena.execute(f);
+}
+
+OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng,
+                                 const PoissonDiskOptions& options) {
   if (count == 0) throw std::invalid_argument("Poisson-disk sampling needs a sample count of at least 1");
   const double area = checked_area(mesh);
   const double m = std::ceil(std::max(1.0, options.oversampling) * static_cast<double>(count));
@@ -168,46 +187,41 @@ OrientedSamples sample_poisson_count(const SurfaceMesh& mesh, std::size_t count,
     throw std::invalid_argument("Poisson-disk sampling of " + std::to_string(count) +
                                 " samples needs too many candidates; lower the count or the oversampling");
   const OrientedSamples candidates = sample_uniform(mesh, static_cast<std::size_t>(m), rng);
-  const std::size_t n_candidates = candidates.size();
   const NormalRule rule(options.normal_angle_deg);
 
   // Yuksel 2015, §3-4, constants for 2D domains (surfaces): alpha = 8, beta = 0.65, gamma = 1.5.
   const double r_max = poisson_packing_distance(area, count);  // 2·r_max of the paper
-  const double r_min = r_max * 0.65 * (1.0 - std::pow(static_cast<double>(count) / static_cast<double>(n_candidates), 1.5));
+  const double r_min =
+      r_max * 0.65 * (1.0 - std::pow(static_cast<double>(count) / static_cast<double>(candidates.size()), 1.5));
   const auto weight = [&](double d) { return std::pow(1.0 - std::max(d, r_min) / r_max, 8.0); };
 
-  const PointIndex index(candidates.points);
-  std::vector<std::vector<std::pair<Index, double>>> neighbours(n_candidates);
-  std::vector<double> weights(n_candidates, 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_candidates, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      auto& list = neighbours[i];
-      for (const auto& [j, d] : index.within(candidates.points[i], r_max)) {
-        if (j == i || d >= r_max || !rule.agree(candidates.normals[i], candidates.normals[j])) continue;
-        const double w = weight(d);
-        list.emplace_back(j, w);
-        weights[i] += w;
-      }
-    }
+  // Each candidate's weight: the sum over its neighbours closer than r_max (closest first).
+  const poisson_detail::NeighbourLists near = poisson_detail::neighbours_within(
+      candidates.points, r_max, [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); },
+      weight);
+  std::vector<double> weights(candidates.size(), 0.0);
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+    for (std::size_t k = near.offset[i]; k < near.offset[i + 1]; ++k) weights[i] += near.value[k];
   });
-
+  // The candidate with the most crowded neighbourhood goes first (sequential: each removal
+  // changes its neighbours' weights).
   EliminationHeap heap(weights);
   while (heap.size() > count) {
     const Index removed = heap.pop();
-    for (const auto& [j, w] : neighbours[removed])
-      if (heap.contains(j)) heap.decrease(j, w);
+    for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
+      if (heap.contains(near.index[k])) heap.decrease(near.index[k], near.value[k]);
   }
   std::vector<Index> kept;
   kept.reserve(count);
-  for (std::size_t i = 0; i < n_candidates; ++i)
+  for (std::size_t i = 0; i < candidates.size(); ++i)
     if (heap.contains(static_cast<Index>(i))) kept.push_back(static_cast<Index>(i));
   OrientedSamples out = select(candidates, kept);
   out.areas = tangent_voronoi_areas(out, area, 0.75 * r_max, rule);
   return out;
 }
 
-OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
-                                      const PoissonDiskOptions& options) {
+OrientedSamples poisson_by_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
+                                  const PoissonDiskOptions& options) {
   if (!(radius > 0) || !std::isfinite(radius))
     throw std::invalid_argument("Poisson-disk sampling needs a radius > 0");
   const double area = checked_area(mesh);
@@ -221,43 +235,25 @@ OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, st
   const OrientedSamples candidates = sample_uniform(mesh, static_cast<std::size_t>(m), rng);
   const NormalRule rule(options.normal_angle_deg);
 
-  // Dart throwing on a hash grid of cell size `radius`: a candidate is kept when no kept sample
-  // with an agreeing normal lies closer than the radius (the candidates come in random order).
-  struct CellHash {
-    std::size_t operator()(const std::array<long long, 3>& c) const {
-      return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
-    }
-  };
-  std::unordered_map<std::array<long long, 3>, std::vector<Index>, CellHash> grid;
-  const auto cell_of = [radius](const Vec3& p) {
-    return std::array<long long, 3>{static_cast<long long>(std::floor(p.x() / radius)),
-                                    static_cast<long long>(std::floor(p.y() / radius)),
-                                    static_cast<long long>(std::floor(p.z() / radius))};
-  };
-  std::vector<Index> kept;
-  const double r2 = radius * radius;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const Vec3& p = candidates.points[i];
-    const auto c = cell_of(p);
-    bool free = true;
-    for (long long dx = -1; dx <= 1 && free; ++dx)
-      for (long long dy = -1; dy <= 1 && free; ++dy)
-        for (long long dz = -1; dz <= 1 && free; ++dz) {
-          const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
-          if (it == grid.end()) continue;
-          for (Index s : it->second)
-            if ((candidates.points[s] - p).squaredNorm() < r2 && rule.agree(candidates.normals[s], candidates.normals[i])) {
-              free = false;
-              break;
-            }
-        }
-    if (!free) continue;
-    kept.push_back(static_cast<Index>(i));
-    grid[c].push_back(static_cast<Index>(i));
-  }
+  // Dart throwing: a candidate is kept when no kept sample with an agreeing normal lies closer
+  // than the radius (the candidates come in random order).
+  const std::vector<Index> kept = poisson_detail::dart_throwing(
+      candidates.points, radius, [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); });
   OrientedSamples out = select(candidates, kept);
   out.areas = tangent_voronoi_areas(out, area, 0.75 * radius / 0.7, rule);
   return out;
+}
+
+}  // namespace
+
+OrientedSamples sample_poisson_count(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng,
+                                     const PoissonDiskOptions& options) {
+  return with_threads(options.max_threads, [&] { return poisson_by_count(mesh, count, rng, options); });
+}
+
+OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
+                                      const PoissonDiskOptions& options) {
+  return with_threads(options.max_threads, [&] { return poisson_by_radius(mesh, radius, rng, options); });
 }
 
 double min_sample_distance(const OrientedSamples& samples, double normal_angle_deg) {

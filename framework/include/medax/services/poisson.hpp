@@ -2,11 +2,13 @@
 // Poisson-disk (blue-noise) samples of a triangle mesh, with outward normals and areas.
 //
 // Both methods start from dense uniform area-weighted candidates (sample_uniform), so they are
-// deterministic for a given generator state:
+// deterministic for a given generator state, whatever the number of threads:
 // - by count: weighted sample elimination (Yuksel 2015, "Sample Elimination for Generating
 //   Poisson Disk Sample Sets", Eurographics), which returns exactly `count` samples;
 // - by radius: dart throwing over the candidates in their random order, which returns a
 //   (nearly maximal) set in which no two samples are closer than `radius`.
+// Neighbour searches go through a spatial hash grid, in parallel (TBB); the elimination itself
+// is sequential (each removal changes its neighbours' weights).
 // Distances are Euclidean, but two samples only repel each other when their normals differ by
 // less than `normal_angle_deg`: the two sides of a plate thinner than the radius are sampled
 // independently instead of thinning each other out.
@@ -22,6 +24,8 @@ struct PoissonDiskOptions {
   double oversampling = 5.0;
   /// Samples whose normals differ by this angle or more never repel each other (degrees).
   double normal_angle_deg = 120.0;
+  /// When > 0, at most this many threads (a TBB arena of that size); 0: TBB's default.
+  int max_threads = 0;
 };
 
 /// Exactly `count` samples by weighted sample elimination. Each sample's area is the share of

@@ -175,7 +175,10 @@
   const vertexCount = medial.radii.length;
   const sphereMaterial = new THREE.MeshPhongMaterial({ color: 0x4a90d9, transparent: true, opacity: 0.25,
     depthWrite: false });
-  const allSpheres = new THREE.InstancedMesh(new THREE.SphereBufferGeometry(1, 16, 10), sphereMaterial, vertexCount);
+  // Coarser spheres when there are many: 10^5 spheres of 16x10 would be 3x10^7 triangles.
+  const sphere = vertexCount > 20000 ? new THREE.SphereBufferGeometry(1, 8, 6)
+    : new THREE.SphereBufferGeometry(1, 16, 10);
+  const allSpheres = new THREE.InstancedMesh(sphere, sphereMaterial, vertexCount);
   {
     const m = new THREE.Matrix4();
     for (let i = 0; i < vertexCount; ++i) {

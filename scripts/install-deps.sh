@@ -12,6 +12,9 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
   catch2 libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev
+  libopenvdb-dev
+  libjs-three chromium libpng-dev
+  slurm-wlm munge
   libcgal-demo
 )
 

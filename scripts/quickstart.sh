@@ -7,4 +7,5 @@ scripts/install-deps.sh
 scripts/build.sh --target medax_cli medax_plugins
 build/bin/medax run pipelines/quickstart.yaml --out medax-runs/quickstart "$@"
 echo
-echo "Open medax-runs/quickstart/medial.ply in MeshLab; metrics are in medax-runs/quickstart/metrics.json."
+echo "See it: build/bin/medax view medax-runs/quickstart (one HTML page, docs/viewer.md);"
+echo "metrics are in medax-runs/quickstart/metrics.json."

@@ -49,10 +49,6 @@ void print_table(const std::vector<std::vector<std::string>>& rows) {
   }
 }
 
-std::string default_run_dir(const PipelineConfig& config) {
-  return fmt::format("medax-runs/{}-{}", config.name, config.input.stem().string());
-}
-
 /// Loads and validates; prints diagnostics and returns nullopt on failure.
 std::optional<PipelineConfig> load(const RunArgs& args, const Registry& registry) {
   try {
@@ -67,6 +63,14 @@ std::optional<PipelineConfig> load(const RunArgs& args, const Registry& registry
 }
 
 }  // namespace
+
+std::filesystem::path default_run_folder(const PipelineConfig& config) {
+  return fmt::format("medax-runs/{}-{}", config.name, config.input.stem().string());
+}
+
+std::filesystem::path default_run_folder(const SweepConfig& config) {
+  return std::filesystem::path("medax-runs") / config.name;
+}
 
 bool check_pipeline_file(const std::filesystem::path& pipeline) {
   std::error_code ec;
@@ -149,7 +153,7 @@ int run(const RunArgs& args) {
   auto config = load(args, registry);
   if (!config) return 2;
   RunOptions options;
-  options.out_dir = args.out.empty() ? std::filesystem::path(default_run_dir(*config)) : args.out;
+  options.out_dir = args.out.empty() ? default_run_folder(*config) : args.out;
   options.quiet = args.quiet;
   const RunResult result = run_pipeline(*config, options);
   if (!result.wrote_log) {  // nothing ran, there is no log

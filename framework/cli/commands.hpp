@@ -9,6 +9,10 @@
 namespace CLI {
 class App;
 }
+namespace medax {
+struct PipelineConfig;
+struct SweepConfig;
+}  // namespace medax
 
 namespace medax::cli {
 
@@ -43,6 +47,11 @@ struct RunArgs {
   SlurmArgs slurm;                ///< --backend slurm's options
   std::filesystem::path slurm_task;  ///< --slurm-task TASKS: run as one task of a sweep's Slurm array
 };
+
+/// Where `run` writes without --out: medax-runs/<pipeline>-<input stem> for a pipeline,
+/// medax-runs/<name> for an experiment.
+std::filesystem::path default_run_folder(const PipelineConfig& config);
+std::filesystem::path default_run_folder(const SweepConfig& config);
 
 /// Registers `run`'s own options (run_options.cpp) into `args`.
 void add_run_options(CLI::App& run, RunArgs& args);

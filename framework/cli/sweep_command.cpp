@@ -71,7 +71,7 @@ SlurmOptions slurm_options(const RunArgs& args) {
 
 SweepOptions sweep_options(const RunArgs& args, const SweepConfig& config) {
   SweepOptions options;
-  options.out_dir = args.out.empty() ? std::filesystem::path("medax-runs") / config.name : args.out;
+  options.out_dir = args.out.empty() ? default_run_folder(config) : args.out;
   options.medax_executable = boost::dll::program_location().string();
   options.parallel_jobs = args.parallel_jobs;
   options.quiet = args.quiet;

@@ -90,12 +90,10 @@ int view(const ViewArgs& args) {
 
 int view_finished_run(const RunArgs& args) {
   fs::path folder = args.out;
-  if (folder.empty() && is_sweep(args.pipeline)) {  // the folder `run` chose: medax-runs/<name>
-    folder = fs::path("medax-runs") / load_sweep(args.pipeline).name;
-  } else if (folder.empty()) {  // medax-runs/<pipeline>-<input stem>
-    const PipelineConfig config =
-        load_pipeline(args.pipeline, Registry::global(), Overrides{args.input, args.settings});
-    folder = fmt::format("medax-runs/{}-{}", config.name, config.input.stem().string());
+  if (folder.empty() && is_sweep(args.pipeline)) {
+    folder = default_run_folder(load_sweep(args.pipeline));
+  } else if (folder.empty()) {
+    folder = default_run_folder(load_pipeline(args.pipeline, Registry::global(), Overrides{args.input, args.settings}));
   }
   return view(ViewArgs{folder, {}, false, false});
 }

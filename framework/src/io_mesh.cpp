@@ -196,6 +196,7 @@ void explain_stl(const fs::path& path, const std::string& text) {
 /// A PLY header: the elements with their properties, the format and where the body starts.
 struct PlyProperty {
   std::string name;
+  bool real = false;   ///< a float or double scalar (CGAL's point reader asserts on anything else)
   int size = 4;        ///< bytes of a value (binary)
   int count_size = 0;  ///< bytes of a list's count; 0 for a scalar
   bool count_signed = false;
@@ -229,6 +230,7 @@ PlyProperty ply_property(const fs::path& path, const std::vector<std::string_vie
   PlyProperty property;
   property.name = std::string(t.back());
   property.size = ply_type_size(t[list ? 3 : 1]);
+  property.real = !list && (t[1] == "float" || t[1] == "float32" || t[1] == "double" || t[1] == "float64");
   if (list) {
     property.count_size = ply_type_size(t[2]);
     property.count_signed = t[2] == "char" || t[2] == "int8" || t[2] == "short" || t[2] == "int16" || t[2] == "int" ||
@@ -421,9 +423,18 @@ detail::PlyContents detail::check_ply_contents(const fs::path& path, const std::
     if (e.name == "face" || e.name == "tristrips") contents.faces += e.count;
     if (e.name != "vertex") continue;
     contents.vertices = e.count;
-    int found = 0;
-    for (const PlyProperty& p : e.properties) found += !p.count_size && (p.name == "nx" || p.name == "ny" || p.name == "nz");
-    contents.normals = found == 3;
+    int coordinates = 0, normals = 0;
+    for (const PlyProperty& p : e.properties) {
+      const bool coordinate = p.name == "x" || p.name == "y" || p.name == "z";
+      const bool normal = p.name == "nx" || p.name == "ny" || p.name == "nz";
+      if ((coordinate || normal) && !p.real && contents.point_problem.empty())
+        contents.point_problem = fmt::format("the vertex property '{}' is not a float or double", p.name);
+      coordinates += coordinate && p.real;
+      normals += normal && p.real;
+    }
+    contents.normals = normals == 3;
+    if (coordinates != 3 && contents.point_problem.empty())
+      contents.point_problem = "the vertex element does not have the properties x, y and z once each";
   }
   return contents;
 }

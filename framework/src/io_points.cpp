@@ -139,6 +139,8 @@ void read_ply_points(const fs::path& path, const std::string& text, RawPoints& r
   const detail::PlyContents contents = detail::check_ply_contents(path, text);
   if (contents.faces > 0)
     fail(path, fmt::format("{} faces: the file is a mesh, not a point set", contents.faces));
+  if (!contents.point_problem.empty())
+    fail(path, contents.point_problem + ": re-export the points with float or double x y z (and nx ny nz)");
   using Kernel = CGAL::Simple_cartesian<double>;
   using PointNormal = std::pair<Kernel::Point_3, Kernel::Vector_3>;
   std::vector<PointNormal> read;

@@ -99,6 +99,9 @@ struct PlyContents {
   long long vertices = 0;
   long long faces = 0;    ///< elements named 'face' (or 'tristrips')
   bool normals = false;   ///< the vertex element has nx, ny and nz
+  /// Why CGAL's point reader cannot take the vertex element (x, y, z, nx, ny, nz must be float or
+  /// double scalars, x, y, z once each); empty when it can.
+  std::string point_problem;
 };
 /// Checks a PLY file as read_mesh does (header, counts against the size, body) and says what it
 /// holds. Throws IoError naming the file and the line. Defined in io_mesh.cpp.

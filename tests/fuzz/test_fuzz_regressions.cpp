@@ -96,6 +96,12 @@ TEST_CASE("the fixed findings are refused with the reason and the place", "[fuzz
                     Catch::Contains("line 2: a format line is"));
   CHECK_THROWS_WITH(read_mesh(scratch_file("early.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n")),
                     Catch::Contains("early.ply: line 3: a property comes before any 'element' line"));
+  // A vertex-only PLY (a point set) with an integer coordinate: CGAL's point reader asserts
+  // (terminate) on a coordinate or normal that is not float or double; now refused before it.
+  CHECK_THROWS_WITH(medax::read_shape(regressions / "ply_ascii" / "assert_point_reader_uint8_z.ply"),
+                    Catch::Contains("the vertex property 'z' is not a float or double"));
+  CHECK_THROWS_WITH(medax::read_shape(regressions / "ply_binary" / "assert_point_reader_int16_z.ply"),
+                    Catch::Contains("the vertex property 'z' is not a float or double"));
 }
 
 TEST_CASE("OFF variants: colours ignored, nOFF and binary OFF refused before any allocation", "[fuzz]") {

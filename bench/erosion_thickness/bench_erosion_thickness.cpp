@@ -75,6 +75,7 @@ void BM_ErosionThickness(benchmark::State& state) {
   state.counters["complex_vertices"] = double(in.complex.num_vertices());
   state.counters["nodes"] = double(nodes);
   state.counters["arcs"] = double(arcs);
+  state.SetLabel("paper: under a few seconds at 50k vertices, omega 0.004 (3.2 GHz quad-core)");
 }
 BENCHMARK(BM_ErosionThickness)->Arg(125)->Arg(250)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
 

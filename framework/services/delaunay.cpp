@@ -17,6 +17,7 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -96,9 +97,11 @@ DelaunayTetrahedralization extract(Triangulation& dt, bool parallel, bool canoni
     throw std::invalid_argument("the points are coplanar or collinear: a 3D Delaunay tetrahedralization needs "
                                 "points spanning three dimensions");
   std::vector<typename Triangulation::Cell_handle> cells;
-  cells.reserve(dt.number_of_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = DelaunayTetrahedralization::kInfinite;
+  // Only the infinite cells keep kInfinite: the finite ones are numbered below.
+  std::vector<typename Triangulation::Cell_handle> infinite;
+  dt.incident_cells(dt.infinite_vertex(), std::back_inserter(infinite));
+  for (const auto& c : infinite) c->info() = DelaunayTetrahedralization::kInfinite;
   const std::size_t n = cells.size();
 
   // Deterministic cell order, whatever the insertion history: sort by sorted corners.
@@ -116,7 +119,9 @@ DelaunayTetrahedralization extract(Triangulation& dt, bool parallel, bool canoni
     for (std::size_t i = 0; i < n; ++i) make_key(i);
     std::sort(keys.begin(), keys.end());
   }
-  for (std::size_t i = 0; i < n; ++i) cells[keys[i].cell]->info() = static_cast<std::int64_t>(i);
+  const auto number = [&](std::size_t i) { cells[keys[i].cell]->info() = static_cast<std::int64_t>(i); };
+  if (parallel) tbb::parallel_for(std::size_t{0}, n, number);
+  else for (std::size_t i = 0; i < n; ++i) number(i);
 
   DelaunayTetrahedralization out;
   out.cells.resize(n);

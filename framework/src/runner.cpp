@@ -146,10 +146,8 @@ class Run {
   /// Reads the input mesh (and `medial_input:`); false, recorded as a failure at `input`, when it cannot.
   bool read_input() {
     try {
-      scene_.shape.mesh = read_mesh(config_.input);
-      scene_.shape.source = config_.input.string();
-      log_->info("read {}: {} vertices, {} faces", config_.input.string(), scene_.shape.mesh.vertices.size(),
-                 scene_.shape.mesh.faces.size());
+      scene_.shape = read_shape(config_.input);
+      log_->info("read {}: {}", config_.input.string(), describe_input());
       if (!config_.medial_input.empty()) {
         scene_.medial = read_medial(config_.medial_input);
         log_->info("read {}: {} medial vertices", config_.medial_input.string(), scene_.medial->centres.size());
@@ -161,6 +159,15 @@ class Run {
       log_->error("cannot read the input: {}", e.what());
       return false;
     }
+  }
+
+  /// "N vertices, M faces", or for a point-set file "a point cloud of N points, no faces".
+  std::string describe_input() const {
+    const Shape& shape = scene_.shape;
+    if (!shape.mesh.empty())
+      return fmt::format("{} vertices, {} faces", shape.mesh.vertices.size(), shape.mesh.faces.size());
+    const bool normals = !shape.samples.normals.empty();
+    return fmt::format("a point cloud of {} points{}, no faces", shape.samples.size(), normals ? " with normals" : "");
   }
 
   /// Runs the stages in order until one fails or the user interrupts the run.
@@ -236,6 +243,9 @@ class Run {
     } catch (const std::exception& e) {
       result_.failed_stage = stage.id;
       message = e.what();
+      if (scene_.shape.mesh.empty())  // a point cloud: say so, the stage's words may not
+        message += fmt::format(" ({} is {}; docs/pointclouds.md lists the stages for point clouds)",
+                               config_.input.string(), describe_input());
       result_.error = fmt::format("{}: {}", stage.id, message);  // the stage's words, under its id
     }
     timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -76,7 +76,8 @@ void RepairStage::check_params() const {
 
 void RepairStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.empty())
-    throw std::invalid_argument("the shape has no surface mesh (repair works on meshes, not samples)");
+    throw std::invalid_argument("the shape has no surface mesh (repair works on meshes, not samples; "
+                                "`reconstruct_mesh` makes one of a point cloud: docs/plugins/pointset.md)");
   check_params();  // for direct calls; a pipeline has checked them when it was validated
 }
 
@@ -128,7 +129,9 @@ void SampleStage::declare(ParamBinder& p) {
 }
 
 void SampleStage::check_scene(const Scene& scene) const {
-  if (scene.shape.mesh.empty()) throw std::invalid_argument("the shape has no surface mesh to sample");
+  if (scene.shape.mesh.empty())
+    throw std::invalid_argument("the shape has no surface mesh to sample (a point cloud is samples already; "
+                                "`reconstruct_mesh` makes a mesh of it: docs/plugins/pointset.md)");
 }
 
 void SampleStage::condition(Shape& shape, Context& ctx) {

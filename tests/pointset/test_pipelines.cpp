@@ -1,12 +1,13 @@
 // The shipped point-cloud pipelines on the scan-like torus cloud of data/torus_scan.xyz (no
-// normals, noise, a hole, stray points): validated against the built plugins, then run stage by
-// stage on the shape read_shape() gives (the runner's own read of the input is the kernel's).
+// normals, noise, a hole, stray points), run by the runner as `medax run` does: it reads the
+// .xyz input as a point cloud; the run folder's medial.ma is checked against the torus.
 #include <medax/io.hpp>
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
 #include <medax/services/topology.hpp>
 #include <medax/testing/shapes.hpp>
 
+#include <pipeline_run.hpp>
 #include <test_paths.hpp>
 
 #include <catch2/catch.hpp>
@@ -17,79 +18,71 @@ using namespace medax;
 
 namespace {
 
-/// Runs every stage of `config` on the shape of its input, as the runner does.
-Scene run_stages(const PipelineConfig& config) {
-  Scene scene;
-  scene.shape = read_shape(config.input);
-  for (const StageConfig& stage : config.stages) {
-    INFO(stage.id);
-    stage.instance->prepare(scene);
-    BasicContext ctx(config.seed, false, stage.id);
-    stage.instance->run(scene, ctx);
-  }
-  return scene;
-}
-
-/// Median distance of the complex's centres, in the input frame, to the torus's core circle.
-double median_core_distance(const Scene& scene) {
+/// Median distance of the complex's centres (the run folder's, in the input frame) to the torus's core circle.
+double median_core_distance(const MedialComplex& medial) {
   std::vector<double> d;
-  for (const Vec3& c : scene.medial->centres) d.push_back(testing::torus_axis_distance(scene.shape.to_input.apply(c), 1.0));
+  for (const Vec3& c : medial.centres) d.push_back(testing::torus_axis_distance(c, 1.0));
   std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
   return d[d.size() / 2];
 }
 
-const Registry* shipped_registry() {
+/// The shipped plugins (built before this test: tests/pointset/CMakeLists.txt).
+const Registry& shipped_registry() {
   static Registry* registry = [] {
     auto* r = new Registry();  // kept for the process: the stages' code lives in its plugins
     r->load_default();
     return r;
   }();
-  for (const char* stage : {"outliers", "normalize", "vmas", "vmas_dual", "dey_zhao", "counts", "topology"})
-    if (!registry->find(stage)) return nullptr;
-  return registry;
+  return *registry;
 }
 
 std::filesystem::path pipeline(const std::string& name) { return test::source_dir() / "pipelines" / name; }
 
+/// Runs a shipped pipeline on its default input; the medial complex it wrote.
+MedialComplex run_shipped(const std::string& name) {
+  const auto out = test::scratch_dir("pointcloud_" + name) / "run";
+  const RunResult result = test::run_quietly(pipeline(name + ".yaml"), shipped_registry(), out);
+  INFO(result.error);
+  REQUIRE(result.ok);
+  return read_ma(out / "medial.ma");
+}
+
 }  // namespace
 
 TEST_CASE("pointcloud_vmas on a raw torus scan: the core circle with its one cycle", "[pointset][pipelines]") {
-  const Registry* registry = shipped_registry();
-  if (!registry) {
-    WARN("the conditioning, vmas, dey_zhao or evaluation plugins are not built: pipelines not run");
-    return;
-  }
-  const PipelineConfig config = load_pipeline(pipeline("pointcloud_vmas.yaml"), *registry);
-  REQUIRE(is_point_set_file(config.input));
-  const Scene scene = run_stages(config);
-  REQUIRE(scene.medial);
-  CHECK(scene.medial->num_vertices() == 30);
-  const services::ComplexTopology top = services::complex_topology(*scene.medial);
+  REQUIRE(is_point_set_file(load_pipeline(pipeline("pointcloud_vmas.yaml"), shipped_registry()).input));
+  const MedialComplex medial = run_shipped("pointcloud_vmas");
+  CHECK(medial.num_vertices() == 30);
+  const services::ComplexTopology top = services::complex_topology(medial);
   CHECK(top.b0 == 1);
   CHECK(top.b1 == 1);
-  CHECK(median_core_distance(scene) < 0.05);
+  CHECK(median_core_distance(medial) < 0.05);
 }
 
 TEST_CASE("pointcloud_dey_zhao on a raw torus scan: facets around the core circle", "[pointset][pipelines]") {
-  const Registry* registry = shipped_registry();
-  if (!registry) {
-    WARN("the conditioning, vmas, dey_zhao or evaluation plugins are not built: pipelines not run");
-    return;
-  }
-  const PipelineConfig config = load_pipeline(pipeline("pointcloud_dey_zhao.yaml"), *registry);
-  const Scene scene = run_stages(config);
-  REQUIRE(scene.medial);
-  CHECK(scene.medial->faces.size() > 100);
-  CHECK(median_core_distance(scene) < 0.05);
-  CHECK(services::complex_topology(*scene.medial).b1 >= 1);  // around the hole of the torus
+  const MedialComplex medial = run_shipped("pointcloud_dey_zhao");
+  CHECK(medial.faces.size() > 100);
+  CHECK(median_core_distance(medial) < 0.05);
+  CHECK(services::complex_topology(medial).b1 >= 1);  // around the hole of the torus
 }
 
 TEST_CASE("a mesh through a point-cloud pipeline is refused naming what the stage works on",
           "[pointset][pipelines]") {
-  const Registry* registry = shipped_registry();
-  if (!registry) return;
   Overrides overrides;
   overrides.input = test::data_dir() / "cube.off";
-  const PipelineConfig config = load_pipeline(pipeline("pointcloud_vmas.yaml"), *registry, overrides);
-  CHECK_THROWS_WITH(run_stages(config), Catch::Contains("the shape has no points"));
+  const auto out = test::scratch_dir("pointcloud_on_mesh") / "run";
+  const RunResult result = test::run_quietly(pipeline("pointcloud_vmas.yaml"), shipped_registry(), out, overrides);
+  CHECK_FALSE(result.ok);
+  CHECK_THAT(result.error, Catch::Contains("the shape has no points"));
+}
+
+TEST_CASE("a point cloud through a mesh pipeline: the error says the input is a point cloud",
+          "[pointset][pipelines]") {
+  Overrides overrides;
+  overrides.input = test::source_dir() / "tests" / "pointset" / "data" / "torus_scan.xyz";
+  const auto out = test::scratch_dir("mesh_pipeline_on_cloud") / "run";
+  const RunResult result = test::run_quietly(pipeline("vmas.yaml"), shipped_registry(), out, overrides);
+  CHECK_FALSE(result.ok);
+  CHECK_THAT(result.error, Catch::Contains("torus_scan.xyz is a point cloud of"));
+  CHECK_THAT(result.error, Catch::Contains("docs/pointclouds.md"));
 }

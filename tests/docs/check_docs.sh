@@ -33,12 +33,21 @@ pipeline_snippets() {
     { if ($0 !~ /^[[:space:]]*$/) prev = $0 }' "$1"
 }
 
-# Prints "<line> <command>" for each medax command line in the ```sh blocks of $1.
+# Prints "<line> <command>" for each medax command line in the ```sh blocks of $1 (a line that
+# ends in a backslash continues on the next).
 command_lines() {
   awk '
+    function emit() { sub(/[[:space:]]+#.*$/, "", command); print start, command; command = "" }
+    function take(text) {
+      continued = (text ~ /\\[[:space:]]*$/)
+      sub(/\\[[:space:]]*$/, "", text)
+      command = command text
+      if (!continued) emit()
+    }
     /^```sh/ { inside = (prev !~ /docs-test: skip/); next }
     /^```/ { inside = 0; next }
-    inside && /^(MEDAX_PLUGIN_PATH=[^ ]* )?medax / { sub(/[[:space:]]+#.*$/, ""); print NR, $0 }
+    inside && continued { sub(/^[[:space:]]+/, " "); take($0); next }
+    inside && /^(MEDAX_PLUGIN_PATH=[^ ]* )?medax / { start = NR; take($0) }
     { if ($0 !~ /^[[:space:]]*$/) prev = $0 }' "$1"
 }
 
@@ -52,7 +61,8 @@ checkable() {
     case "$w" in
       MEDAX_PLUGIN_PATH=*) continue ;;
       --out|-j|--timeout|--memory-mib|--warmup|--repeat) skip_next=1; continue ;;
-      --quiet|--results-only|--markdown) continue ;;
+      --backend|--partition|--time|--mem|--cpus|--max-parallel|--retry|--poll) skip_next=1; continue ;;
+      --quiet|--results-only|--markdown|--no-wait|--view) continue ;;
     esac
     case "$placeholder_meshes" in *" $w "*) w=$mesh ;; esac
     out+=("$w")

@@ -13,9 +13,10 @@
 // shared); the counters are that run's phases.
 #include "medial.hpp"
 
+#include <common/koala_samples.hpp>
+
 #include <medax/io.hpp>
 #include <medax/services/delaunay.hpp>
-#include <medax/services/poisson.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -23,9 +24,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <map>
 
 namespace {
 
@@ -34,42 +33,10 @@ using Clock = std::chrono::steady_clock;
 
 std::filesystem::path meshes_dir = MEDAX_CORPUS_DIR;
 
-const SurfaceMesh& koala() {
-  static const SurfaceMesh mesh = read_mesh(meshes_dir / "koala.obj");
-  return mesh;
-}
+const SurfaceMesh& koala() { return bench::koala(meshes_dir); }
 
-/// Poisson-disk samples of koala (cached in the build folder's bench-cache/: 1M samples take a while to make).
-const OrientedSamples& samples(std::size_t n) {
-  static std::map<std::size_t, OrientedSamples> cache;
-  auto it = cache.find(n);
-  if (it != cache.end()) return it->second;
-  std::filesystem::create_directories(MEDAX_BENCH_CACHE_DIR);
-  const std::filesystem::path file =
-      std::filesystem::path(MEDAX_BENCH_CACHE_DIR) / ("bench_dey_zhao_koala_" + std::to_string(n) + ".bin");
-  OrientedSamples s;
-  std::ifstream in(file, std::ios::binary);
-  std::uint64_t count = 0;
-  if (in && in.read(reinterpret_cast<char*>(&count), sizeof count) && count == n) {
-    s.points.resize(n);
-    s.normals.resize(n);
-    in.read(reinterpret_cast<char*>(s.points.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
-    in.read(reinterpret_cast<char*>(s.normals.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
-  }
-  if (!in) {
-    const auto t0 = Clock::now();
-    std::mt19937_64 rng(1);
-    s = services::sample_poisson_count(koala(), n, rng);
-    std::cerr << "sampled " << n << " Poisson-disk points of koala in "
-              << std::chrono::duration<double>(Clock::now() - t0).count() << " s\n";
-    std::ofstream out(file, std::ios::binary);
-    count = n;
-    out.write(reinterpret_cast<const char*>(&count), sizeof count);
-    out.write(reinterpret_cast<const char*>(s.points.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
-    out.write(reinterpret_cast<const char*>(s.normals.data()), static_cast<std::streamsize>(n * sizeof(Vec3)));
-  }
-  return cache.emplace(n, std::move(s)).first->second;
-}
+/// Poisson-disk samples of koala, cached in the build folder's bench-cache/ (bench/common).
+const OrientedSamples& samples(std::size_t n) { return bench::koala_samples(meshes_dir, n); }
 
 void BM_Delaunay(benchmark::State& state, std::size_t n) {
   const OrientedSamples& s = samples(n);

@@ -5,21 +5,14 @@
 #include "snapshot_chromium.hpp"
 
 #include <catch2/catch.hpp>
+#include <command_output.hpp>
 #include <test_paths.hpp>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 namespace medax::test {
-
-struct CommandOutput {
-  int code = -1;
-  std::string out, err;
-};
 
 inline std::string file_text(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -28,21 +21,11 @@ inline std::string file_text(const std::filesystem::path& file) {
   return text.str();
 }
 
-/// Runs `medax ARGS` (the built binary, its own plugins), capturing stdout and stderr.
+/// Runs `medax ARGS` (the built binary, its own plugins), capturing stdout and stderr. No display:
+/// `view` prints the page's path instead of opening a browser.
 inline CommandOutput run_medax(const std::string& args) {
-  const auto err_file = binary_dir() / "tests" / "scratch" / "viewer_medax_stderr.txt";
-  // No display: `view` prints the page's path instead of opening a browser.
-  const std::string command = "env -u DISPLAY -u WAYLAND_DISPLAY MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) +
-                              "' " + args + " 2>'" + err_file.string() + "'";
-  CommandOutput result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe);
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  result.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = file_text(err_file);
-  return result;
+  return run_command("env -u DISPLAY -u WAYLAND_DISPLAY MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) + "' " + args,
+                     binary_dir() / "tests" / "scratch" / "viewer_medax_stderr.txt");
 }
 
 /// The run folder of tests/viewer/small_run.yaml (quickstart's axis of tests/data/ellipsoid.off),

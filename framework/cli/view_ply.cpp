@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -85,16 +86,26 @@ std::vector<Layout> read_header(PlyText& text) {
   text.fail("the header has no end_header line");
 }
 
+/// The next number of a row. medax writes an undefined field value as `nan` (ET's et_c where no
+/// medial curve passes), which `>>` does not read; strtod does.
+bool next_number(std::istringstream& words, double& value) {
+  std::string word;
+  if (!(words >> word)) return false;
+  char* end = nullptr;
+  value = std::strtod(word.c_str(), &end);
+  return end == word.c_str() + word.size();
+}
+
 void read_row(PlyText& text, std::istringstream& words, Layout& layout, std::size_t row) {
   PlyTable& table = layout.table;
   for (int column : layout.columns) {
     double value = 0;
-    if (!(words >> value)) text.fail(fmt::format("element '{}' row {}: too few numbers", table.name, row));
+    if (!next_number(words, value)) text.fail(fmt::format("element '{}' row {}: a value is missing or not a number", table.name, row));
     if (column >= 0) {
       table.properties[column].values.push_back(value);
       continue;
     }
-    if (value < 0 || value > 1000 || value != static_cast<int>(value))
+    if (!(value >= 0 && value <= 1000) || value != static_cast<int>(value))
       text.fail(fmt::format("element '{}' row {}: a list count of {} (0 to 1000 expected)", table.name, row, value));
     std::vector<std::uint32_t> corners(static_cast<std::size_t>(value));
     for (std::uint32_t& c : corners)

@@ -7,6 +7,7 @@
 #include <medax/io.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 using namespace medax::test;
@@ -144,4 +145,23 @@ TEST_CASE("a stage's point set and primitives are layers coloured by their own f
   CHECK(envelope.field.element == "vertex");
   CHECK(envelope.field.values == std::vector<float>{0.01f, 0.03f});
   CHECK(scene.curves == std::vector<std::uint32_t>{0, 1});  // the .ma's edge, in no triangle
+}
+
+TEST_CASE("the viewer reads a field value written as nan (undefined) and refuses a word that is not a number",
+          "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_nan");
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+      "property double radius\nproperty double et_c\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  write_file(dir / "medial.ply", header + "0 0 0 1 0.5\n1 0 0 1 nan\n1 1 0 1 -inf\n0 1 0 1 2\n3 0 1 2\n");
+  const ViewScene scene = medax::cli::read_view_scene(dir);
+  const ViewField* et_c = find_field(scene, "vertex", "et_c");
+  REQUIRE(et_c);
+  REQUIRE(et_c->values.size() == 4);
+  CHECK(et_c->values[0] == 0.5f);
+  CHECK(std::isnan(et_c->values[1]));
+  CHECK(std::isinf(et_c->values[2]));  // not finite: the page gives it no colour
+  CHECK(et_c->values[3] == 2.0f);
+  write_file(dir / "medial.ply", header + "0 0 0 1 0.5\n1 0 0 1 x1\n1 1 0 1 1\n0 1 0 1 2\n3 0 1 2\n");
+  CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("row 1: a value is missing or not a number"));
 }

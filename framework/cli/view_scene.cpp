@@ -207,7 +207,10 @@ void add_input_surface(const fs::path& folder, ViewScene& scene) {
     return;
   }
   try {
-    ViewSurface s = surface_layer("surface", "input surface", read_mesh(input));
+    Shape shape = read_shape(input);
+    const bool cloud = shape.mesh.empty();  // a point-set input: its points, as a point layer
+    if (cloud) shape.mesh.vertices = std::move(shape.samples.points);
+    ViewSurface s = surface_layer("surface", cloud ? "input point cloud" : "input surface", shape.mesh);
     s.visible = true;
     scene.surfaces.push_back(std::move(s));
   } catch (const std::exception& e) {

@@ -165,3 +165,17 @@ TEST_CASE("the viewer reads a field value written as nan (undefined) and refuses
   write_file(dir / "medial.ply", header + "0 0 0 1 0.5\n1 0 0 1 x1\n1 1 0 1 1\n0 1 0 1 2\n3 0 1 2\n");
   CHECK_THROWS_WITH(medax::cli::read_view_scene(dir), Catch::Contains("row 1: a value is missing or not a number"));
 }
+
+TEST_CASE("the viewer shows a point-cloud input as its points", "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_cloud");
+  write_file(dir / "cloud.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
+  write_file(dir / "config.resolved.yaml", "input: " + (dir / "cloud.xyz").string() + "\n");
+  write_file(dir / "medial.ply",
+             "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\nproperty double z\n"
+             "property double radius\nend_header\n0.5 0.5 0.5 0.4\n");
+  const ViewScene scene = medax::cli::read_view_scene(dir);
+  REQUIRE_FALSE(scene.surfaces.empty());
+  CHECK(scene.surfaces[0].name == "input point cloud");
+  CHECK(scene.surfaces[0].triangles.empty());
+  CHECK(scene.surfaces[0].positions.size() == 15);
+}

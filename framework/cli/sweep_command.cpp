@@ -2,7 +2,7 @@
 // as a Slurm job array: --backend slurm), write the results table and plots.
 #include "commands.hpp"
 
-#include "../src/sweep_backend.hpp"
+#include "sweep_backend.hpp"
 
 #include <medax/kernel/registry.hpp>
 #include <medax/kernel/sweep.hpp>

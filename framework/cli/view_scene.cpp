@@ -3,6 +3,7 @@
 #include "view_ply.hpp"
 
 #include <medax/io.hpp>
+#include <medax/services/closest_point.hpp>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -199,12 +200,13 @@ fs::path input_mesh(const fs::path& folder) {
   return {};
 }
 
-void add_input_surface(const fs::path& folder, ViewScene& scene) {
+/// Adds the input as a layer; returns its mesh (empty for a point cloud or an unreadable input).
+SurfaceMesh add_input_surface(const fs::path& folder, ViewScene& scene) {
   const fs::path input = input_mesh(folder);
   if (input.empty()) {
     scene.notes.push_back(fmt::format("{} names no input mesh: the page shows no input surface",
                                       (folder / "config.resolved.yaml").string()));
-    return;
+    return {};
   }
   try {
     Shape shape = read_shape(input);
@@ -213,9 +215,28 @@ void add_input_surface(const fs::path& folder, ViewScene& scene) {
     ViewSurface s = surface_layer("surface", cloud ? "input point cloud" : "input surface", shape.mesh);
     s.visible = true;
     scene.surfaces.push_back(std::move(s));
+    return cloud ? SurfaceMesh{} : shape.mesh;
   } catch (const std::exception& e) {
     scene.notes.push_back(fmt::format("the input surface is not shown: {}", e.what()));
+    return {};
   }
+}
+
+/// The reconstruction's layer, coloured by each vertex's distance to the input surface (when
+/// there is one) in the input's units.
+void show_as_reconstruction(ViewSurface& s, const std::string& name, const SurfaceMesh& input) {
+  s.id = "reconstruction";
+  s.name = "reconstruction (" + name + ")";
+  s.colour = "#e8903a";
+  s.opacity = 0.35;
+  s.visible = true;
+  if (input.empty() || s.positions.empty()) return;
+  std::vector<Vec3> vertices;
+  for (std::size_t i = 0; i + 2 < s.positions.size(); i += 3)
+    vertices.emplace_back(s.positions[i], s.positions[i + 1], s.positions[i + 2]);
+  s.field = {"distance to the input surface", "vertex", false,
+             as_floats(services::SurfaceDistance(input).distances(vertices))};
+  s.opacity = 1;  // a coloured layer is looked at, not through
 }
 
 bool ends_with(const std::string& text, const std::string& tail) {
@@ -223,7 +244,8 @@ bool ends_with(const std::string& text, const std::string& tail) {
 }
 
 /// The reconstruction (<id>_reconstruction.off) and every other surface file of the folder.
-void add_stage_surfaces(const fs::path& folder, const fs::path& medial_file, ViewScene& scene) {
+void add_stage_surfaces(const fs::path& folder, const fs::path& medial_file, const SurfaceMesh& input,
+                        ViewScene& scene) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(folder)) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
@@ -232,13 +254,7 @@ void add_stage_surfaces(const fs::path& folder, const fs::path& medial_file, Vie
     if (file == medial_file || file.stem() == "medial" || (ext != ".ply" && ext != ".off" && ext != ".obj")) continue;
     try {
       ViewSurface s = ext == ".ply" ? ply_surface(file) : surface_layer(name, name, read_mesh(file));
-      if (ends_with(file.stem().string(), "reconstruction")) {
-        s.id = "reconstruction";
-        s.name = "reconstruction (" + name + ")";
-        s.colour = "#e8903a";
-        s.opacity = 0.35;
-        s.visible = true;
-      }
+      if (ends_with(file.stem().string(), "reconstruction")) show_as_reconstruction(s, name, input);
       scene.surfaces.push_back(std::move(s));
     } catch (const std::exception& e) {
       scene.notes.push_back(fmt::format("{} is not shown: {}", name, e.what()));
@@ -283,8 +299,8 @@ ViewScene read_view_scene(const fs::path& run_folder) {
   else
     read_medial_ma(medial_file, scene);
   check_indices(scene, medial_file);
-  add_input_surface(folder, scene);
-  add_stage_surfaces(folder, medial_file, scene);
+  const SurfaceMesh input = add_input_surface(folder, scene);
+  add_stage_surfaces(folder, medial_file, input, scene);
   return scene;
 }
 

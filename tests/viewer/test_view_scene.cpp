@@ -6,6 +6,8 @@
 
 #include <medax/io.hpp>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -178,4 +180,36 @@ TEST_CASE("the viewer shows a point-cloud input as its points", "[viewer]") {
   CHECK(scene.surfaces[0].name == "input point cloud");
   CHECK(scene.surfaces[0].triangles.empty());
   CHECK(scene.surfaces[0].positions.size() == 15);
+}
+
+namespace {
+
+/// An axis-aligned cube of half-side `h` centred at the origin, as OFF.
+std::string cube_off(double h) {
+  std::string text = "OFF\n8 12 0\n";
+  for (int i = 0; i < 8; ++i)
+    text += fmt::format("{} {} {}\n", i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
+  for (const char* f : {"0 2 1", "1 2 3", "4 5 6", "5 7 6", "0 1 4", "1 5 4", "2 6 3", "3 6 7", "0 4 2", "2 4 6",
+                        "1 3 5", "3 7 5"})
+    text += std::string("3 ") + f + "\n";
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("the viewer colours the reconstruction by its distance to the input surface", "[viewer]") {
+  const auto dir = scratch_dir("viewer_scene_reconstruction");
+  write_file(dir / "cube.off", cube_off(1.0));
+  write_file(dir / "msd_reconstruction.off", cube_off(1.1));
+  write_file(dir / "config.resolved.yaml", "input: " + (dir / "cube.off").string() + "\n");
+  write_file(dir / "medial.ply",
+             "ply\nformat ascii 1.0\nelement vertex 1\nproperty double x\nproperty double y\nproperty double z\n"
+             "property double radius\nend_header\n0 0 0 1\n");
+  const ViewScene scene = medax::cli::read_view_scene(dir);
+  const auto rebuilt = std::find_if(scene.surfaces.begin(), scene.surfaces.end(),
+                                    [](const auto& s) { return s.id == "reconstruction"; });
+  REQUIRE(rebuilt != scene.surfaces.end());
+  CHECK(rebuilt->field.name == "distance to the input surface");
+  REQUIRE(rebuilt->field.values.size() == 8);
+  for (float d : rebuilt->field.values) CHECK(d == Approx(std::sqrt(3.0) * 0.1).epsilon(1e-5));  // corner to corner
 }

@@ -103,7 +103,8 @@ void CoverageAxisStage::check_params() const {
 
 void CoverageAxisStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.vertices.size() < 4 || scene.shape.mesh.faces.empty())
-    throw std::invalid_argument("the shape has no closed surface mesh to sample and to test insideness against");
+    throw std::invalid_argument("the shape has no closed surface mesh to sample and to test insideness against "
+                                "(`reconstruct_mesh` makes one of a point cloud)");
   if (scene.medial->num_vertices() == 0)
     throw std::invalid_argument("the medial complex is empty; put `voronoi` before this stage");
 }

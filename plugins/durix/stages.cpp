@@ -128,11 +128,13 @@ void DelaunaySurfaceStage::declare(ParamBinder& p) {
 
 void DelaunaySurfaceStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.empty())
-    throw std::invalid_argument("the shape has no surface mesh (this stage converts meshes, not samples)");
+    throw std::invalid_argument("the shape has no surface mesh (this stage converts meshes, not samples; "
+                                "`reconstruct_mesh` makes one of a point cloud)");
 }
 
 void DelaunaySurfaceStage::check_input(const SurfaceMesh& mesh, Context& ctx) const {
-  if (mesh.empty()) throw std::invalid_argument("the shape has no surface mesh");
+  if (mesh.empty())
+    throw std::invalid_argument("the shape has no surface mesh (`reconstruct_mesh` makes one of a point cloud)");
   const services::MeshReport report = services::check_mesh(mesh, check_options_);
   ctx.info("input: " + report.summary());
   if (!report.ok())

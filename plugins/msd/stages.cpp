@@ -119,7 +119,8 @@ void MsdStage::declare_construction(ParamBinder& p) {
 
 void MsdStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.faces.size() < 4)
-    throw std::invalid_argument("the shape has no closed surface mesh; MSD fits primitives against S");
+    throw std::invalid_argument("the shape has no closed surface mesh; MSD fits primitives against S "
+                                "(`reconstruct_mesh` makes one of a point cloud)");
   if (scene.medial && scene.medial->num_vertices() == 0)
     throw std::invalid_argument("the medial mesh M is empty; give an extraction stage (e.g. vmas + vmas_dual) "
                                 "or msd_medial with the authors' JSON");

@@ -4,6 +4,7 @@
 #include <medax/io.hpp>
 #include <medax/kernel/pipeline.hpp>
 #include <medax/kernel/registry.hpp>
+#include <medax/kernel/sweep.hpp>
 #include <medax/services/topology.hpp>
 #include <medax/testing/shapes.hpp>
 
@@ -85,4 +86,21 @@ TEST_CASE("a point cloud through a mesh pipeline: the error says the input is a 
   CHECK_FALSE(result.ok);
   CHECK_THAT(result.error, Catch::Contains("torus_scan.xyz is a point cloud of"));
   CHECK_THAT(result.error, Catch::Contains("docs/pointclouds.md"));
+}
+
+TEST_CASE("every shipped mesh pipeline refuses a point cloud naming the stage that makes a mesh",
+          "[pointset][pipelines]") {
+  Overrides overrides;
+  overrides.input = test::source_dir() / "tests" / "pointset" / "data" / "torus_scan.xyz";
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() / "pipelines")) {
+    const std::filesystem::path file = entry.path();
+    const std::string name = file.filename().string();
+    if (file.extension() != ".yaml" || name.rfind("pointcloud_", 0) == 0 || is_sweep(file)) continue;
+    INFO(name);
+    const RunResult result =
+        test::run_quietly(file, shipped_registry(), test::scratch_dir("cloud_through_" + file.stem().string()) / "run",
+                          overrides);
+    CHECK_FALSE(result.ok);
+    CHECK_THAT(result.error, Catch::Contains("reconstruct_mesh"));
+  }
 }

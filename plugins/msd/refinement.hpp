@@ -1,0 +1,46 @@
+#pragma once
+// Feature-preserving refinement of a fitted primitive (paper §5.4; notes §2.8): T_P is changed so
+// that it reproduces exactly the part of S it covers, with S's own vertices and triangles there,
+// while staying closed, 2-manifold and consistent (one radius per direction of the element).
+#include "primitive.hpp"
+#include "target_mesh.hpp"
+
+#include <medax/surface.hpp>
+
+#include <string>
+#include <vector>
+
+namespace medax::msd {
+
+struct RefineOptions {
+  /// A vertex of S is selected when its distance to T_P is below this (authors' code: 1e-3).
+  double select_distance = 1e-3;
+  /// ... or when the segment from the element to it does not cross S and meets T_P within this
+  /// many mean edge lengths ℓ̄ of it (authors' code: 2).
+  double select_reach = 2;
+  /// Clean-up: edges of T_P shorter than this that carry no matched geometry are collapsed
+  /// (authors' code: 5e-3).
+  double cleanup_length = 5e-3;
+};
+// Lengths are in the unit box (multiples of TargetMesh::scale()).
+
+/// A refined primitive: a general closed mesh whose vertices keep the element point b_i they are
+/// measured from, so consistency stays checkable.
+struct RefinedPrimitive {
+  SurfaceMesh mesh;                 ///< closed, 2-manifold, outward oriented, working frame
+  std::vector<Vec3> base;           ///< b_i ∈ P per mesh vertex
+  std::vector<Index> input_vertex;  ///< the S vertex a mesh vertex is, or -1
+  std::vector<Index> input_faces;   ///< the S triangles the mesh contains
+  bool refined = false;             ///< false: `mesh` is the fitted T_P unchanged, `note` says why
+  std::string note;
+};
+
+/// Refines one fitted primitive (an unfitted one is returned empty with refined = false).
+RefinedPrimitive refine_primitive(const Primitive& primitive, const TargetMesh& target,
+                                  const RefineOptions& options = {});
+
+/// Every primitive, in parallel; the result does not depend on the thread count.
+std::vector<RefinedPrimitive> refine_primitives(const std::vector<Primitive>& primitives, const TargetMesh& target,
+                                                const RefineOptions& options = {});
+
+}  // namespace medax::msd

@@ -84,19 +84,50 @@ std::array<int, 4> canonical_corners(const std::array<Index, 4>& v, bool canonic
   return order;
 }
 
-/// A cell's corners sorted, packed into one 128-bit key for a fast deterministic sort.
-struct CellKey {
-  std::uint64_t hi, lo;
-  std::uint32_t cell;  // position in the CGAL iteration order
-  bool operator<(const CellKey& o) const { return hi != o.hi ? hi < o.hi : lo < o.lo; }
-};
+/// Runs f(i) for i in [0, n), in parallel or not.
+template <typename F>
+void for_each_index(std::size_t n, bool parallel, const F& f) {
+  if (parallel) tbb::parallel_for(std::size_t{0}, n, f);
+  else for (std::size_t i = 0; i < n; ++i) f(i);
+}
+
+/// The cells in a deterministic order, whatever the insertion history: by their corners' ranks,
+/// each cell's ranks sorted ascending and compared lexicographically. A counting sort on the
+/// smallest rank, then a sort of each (small) bucket on the other three: no comparison sort of
+/// all cells. `rank` maps a vertex's info (its point index) to its rank, below `ranks`.
+template <typename CellHandle>
+std::vector<std::uint32_t> canonical_cell_order(const std::vector<CellHandle>& cells, const std::vector<Index>& rank,
+                                                std::size_t ranks, bool parallel) {
+  const std::size_t n = cells.size();
+  std::vector<std::array<Index, 4>> key(n);
+  for_each_index(n, parallel, [&](std::size_t i) {
+    const auto& c = cells[i];
+    key[i] = {rank[c->vertex(0)->info()], rank[c->vertex(1)->info()], rank[c->vertex(2)->info()],
+              rank[c->vertex(3)->info()]};
+    std::sort(key[i].begin(), key[i].end());
+  });
+  std::vector<std::size_t> start(ranks + 1, 0);
+  for (const auto& k : key) ++start[k[0] + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> order(n);
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[next[key[i][0]]++] = static_cast<std::uint32_t>(i);
+  }
+  const auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; };
+  for_each_index(ranks, parallel, [&](std::size_t r) {
+    if (start[r + 1] - start[r] > 1) std::sort(order.begin() + start[r], order.begin() + start[r + 1], by_key);
+  });
+  return order;
+}
 
 template <typename Triangulation>
-DelaunayTetrahedralization extract(Triangulation& dt, bool parallel, bool canonical) {
+DelaunayTetrahedralization extract(Triangulation& dt, const std::vector<Index>& rank, bool parallel, bool canonical) {
   if (dt.dimension() < 3)
     throw std::invalid_argument("the points are coplanar or collinear: a 3D Delaunay tetrahedralization needs "
                                 "points spanning three dimensions");
   std::vector<typename Triangulation::Cell_handle> cells;
+  cells.reserve(dt.number_of_finite_cells());
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
   // Only the infinite cells keep kInfinite: the finite ones are numbered below.
   std::vector<typename Triangulation::Cell_handle> infinite;
@@ -104,46 +135,28 @@ DelaunayTetrahedralization extract(Triangulation& dt, bool parallel, bool canoni
   for (const auto& c : infinite) c->info() = DelaunayTetrahedralization::kInfinite;
   const std::size_t n = cells.size();
 
-  // Deterministic cell order, whatever the insertion history: sort by sorted corners.
-  std::vector<CellKey> keys(n);
-  const auto make_key = [&](std::size_t i) {
-    const auto c = cells[i];
-    std::array<Index, 4> k{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
-    std::sort(k.begin(), k.end());
-    keys[i] = {(std::uint64_t{k[0]} << 32) | k[1], (std::uint64_t{k[2]} << 32) | k[3], static_cast<std::uint32_t>(i)};
-  };
-  if (parallel) {
-    tbb::parallel_for(std::size_t{0}, n, make_key);
-    tbb::parallel_sort(keys.begin(), keys.end());
-  } else {
-    for (std::size_t i = 0; i < n; ++i) make_key(i);
-    std::sort(keys.begin(), keys.end());
-  }
-  const auto number = [&](std::size_t i) { cells[keys[i].cell]->info() = static_cast<std::int64_t>(i); };
-  if (parallel) tbb::parallel_for(std::size_t{0}, n, number);
-  else for (std::size_t i = 0; i < n; ++i) number(i);
+  const std::vector<std::uint32_t> order = canonical_cell_order(cells, rank, rank.size(), parallel);
+  for_each_index(n, parallel, [&](std::size_t i) { cells[order[i]]->info() = static_cast<std::int64_t>(i); });
 
   DelaunayTetrahedralization out;
   out.cells.resize(n);
   out.neighbours.resize(n);
   out.circumcentres.resize(n);
   out.circumradii.resize(n);
-  const auto fill = [&](std::size_t i) {
-    const auto c = cells[keys[i].cell];
+  for_each_index(n, parallel, [&](std::size_t i) {
+    const auto c = cells[order[i]];
     const std::array<Index, 4> v{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
-    const std::array<int, 4> order = canonical_corners(v, canonical);
+    const std::array<int, 4> corner = canonical_corners(v, canonical);
     for (int k = 0; k < 4; ++k) {
-      out.cells[i][k] = v[order[k]];
-      out.neighbours[i][k] = c->neighbor(order[k])->info();  // kInfinite for infinite cells
+      out.cells[i][k] = v[corner[k]];
+      out.neighbours[i][k] = c->neighbor(corner[k])->info();  // kInfinite for infinite cells
     }
-    const auto& p0 = c->vertex(order[0])->point();
-    const K::Point_3 cc =
-        robust_circumcenter(p0, c->vertex(order[1])->point(), c->vertex(order[2])->point(), c->vertex(order[3])->point());
+    const auto& p0 = c->vertex(corner[0])->point();
+    const K::Point_3 cc = robust_circumcenter(p0, c->vertex(corner[1])->point(), c->vertex(corner[2])->point(),
+                                              c->vertex(corner[3])->point());
     out.circumcentres[i] = Vec3(cc.x(), cc.y(), cc.z());
     out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, p0));
-  };
-  if (parallel) tbb::parallel_for(std::size_t{0}, n, fill);
-  else for (std::size_t i = 0; i < n; ++i) fill(i);
+  });
   return out;
 }
 
@@ -222,9 +235,12 @@ void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& point
 /// The Delaunay triangulation of the points, vertex infos set. Small rounds of the insertion
 /// order go in sequentially, large ones concurrently once the triangulation is 3D; the
 /// triangulation is the same either way (CGAL breaks cospherical ties by a symbolic
-/// perturbation, which does not depend on the insertion order).
-void triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
-                 bool parallel) {
+/// perturbation, which does not depend on the insertion order). Returns each info's rank for
+/// numbering the cells: the insertion order reversed, so that nearly every cell is ranked by a
+/// corner of the last round, which is sorted along a Hilbert curve (cells numbered along it are
+/// close in memory, for the extraction and for every method that walks them).
+std::vector<Index> triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
+                               std::size_t ranks, bool parallel) {
   const auto [order, bounds] = brio_order(points, parallel);
   // On one thread, locking only costs (about 15%): insert everything sequentially.
   parallel = parallel && tbb::this_task_arena::max_concurrency() > 1;
@@ -240,6 +256,9 @@ void triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const
       hint->info() = infos[order[i]];
     }
   }
+  std::vector<Index> rank(ranks, 0);
+  for (std::size_t i = 0; i < order.size(); ++i) rank[infos[order[i]]] = static_cast<Index>(order.size() - 1 - i);
+  return rank;
 }
 
 CGAL::Bbox_3 bounding_box(const std::vector<K::Point_3>& points) {
@@ -270,13 +289,15 @@ DelaunayTetrahedralization tetrahedralize(const std::vector<Vec3>& points, const
     std::vector<std::pair<K::Point_3, Index>> with_info(input.size());
     for (std::size_t v = 0; v < input.size(); ++v) with_info[v] = {input[v], vertex_point[v]};
     SequentialTriangulation dt(with_info.begin(), with_info.end());  // sorted along a Hilbert curve first
-    out = extract(dt, options.parallel, false);
+    std::vector<Index> by_index(points.size());  // cells numbered by their corners' point indices
+    std::iota(by_index.begin(), by_index.end(), Index{0});
+    out = extract(dt, by_index, options.parallel, false);
   } else {
     // The lock grid is only used when a round is inserted concurrently.
     LockGrid locks(bounding_box(input), kLockGridCells);
     Triangulation dt(K(), options.parallel ? &locks : nullptr);
-    triangulate(dt, input, vertex_point, options.parallel);
-    out = extract(dt, options.parallel, true);
+    const std::vector<Index> rank = triangulate(dt, input, vertex_point, points.size(), options.parallel);
+    out = extract(dt, rank, options.parallel, true);
   }
   out.vertex_point = std::move(vertex_point);
   out.point_vertex = std::move(point_vertex);

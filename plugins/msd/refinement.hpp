@@ -18,9 +18,13 @@ struct RefineOptions {
   /// ... or when the segment from the element to it does not cross S and meets T_P within this
   /// many mean edge lengths ℓ̄ of it (authors' code: 2).
   double select_reach = 2;
-  /// Clean-up: edges of T_P shorter than this that carry no matched geometry are collapsed
-  /// (authors' code: 5e-3).
+  /// Clean-up (authors' code: 5e-3): template vertices closer than this to the imprinted patch
+  /// are removed before the band is triangulated, so no band edge shorter than about this joins
+  /// a template vertex to the patch (the authors collapse such edges afterwards).
   double cleanup_length = 5e-3;
+  /// When the band between the patch and the template cannot be closed consistently, the patch
+  /// loses its border ring and the join is retried, at most this many times.
+  int shrink_retries = 3;
 };
 // Lengths are in the unit box (multiples of TargetMesh::scale()).
 
@@ -29,11 +33,17 @@ struct RefineOptions {
 struct RefinedPrimitive {
   SurfaceMesh mesh;                 ///< closed, 2-manifold, outward oriented, working frame
   std::vector<Vec3> base;           ///< b_i ∈ P per mesh vertex
-  std::vector<Index> input_vertex;  ///< the S vertex a mesh vertex is, or -1
+  std::vector<Index> input_vertex;  ///< the S vertex a mesh vertex is, or kNotInput
   std::vector<Index> input_faces;   ///< the S triangles the mesh contains
   bool refined = false;             ///< false: `mesh` is the fitted T_P unchanged, `note` says why
   std::string note;
+  std::vector<Index> selected_vertices;  ///< the S vertices step 1 selected, ascending
+  std::vector<Index> selected_faces;     ///< the S triangles step 1 selected, ascending (⊇ input_faces)
+  double seconds = 0;                    ///< wall time of this primitive's refinement
 };
+
+/// input_vertex of a mesh vertex that is no S vertex.
+inline constexpr Index kNotInput = static_cast<Index>(-1);
 
 /// Refines one fitted primitive (an unfitted one is returned empty with refined = false).
 RefinedPrimitive refine_primitive(const Primitive& primitive, const TargetMesh& target,

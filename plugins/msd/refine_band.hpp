@@ -1,0 +1,23 @@
+#pragma once
+// Step 4 of the refinement: the remaining template and the patch are joined. Every patch border
+// is paired with the nearest border of the remaining template on ∂P^ρ0 and the band between
+// them is triangulated (refine_stitch); remaining components none of whose borders is paired
+// lie inside the patch's directions (islands) and are dropped.
+#include "refine_geometry.hpp"
+
+#include <string>
+#include <vector>
+
+namespace medax::msd::refine {
+
+struct Closure {
+  std::vector<Tri> remaining;  ///< the template faces kept
+  std::vector<Tri> band;
+  std::string failure;         ///< empty on success
+};
+
+/// Joins `patch` (non-empty, with at least one border) to `remaining`.
+Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& patch,
+                   const std::vector<FramedPoint>& points);
+
+}  // namespace medax::msd::refine

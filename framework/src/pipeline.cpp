@@ -26,6 +26,13 @@ const std::vector<std::string> kOutputKeys{"medial", "surface", "frame"};
 const std::vector<std::string> kMedialFormats{"ma", "ply", "obj"};
 const std::vector<std::string> kSurfaceFormats{"off", "obj", "ply", "stl"};
 
+/// "an extraction stage", "a significance stage": the role with its article.
+std::string a_stage(Role role) {
+  const std::string_view name = to_string(role);
+  const bool vowel = std::string_view("aeiou").find(name.front()) != std::string_view::npos;
+  return fmt::format("{} {} stage", vowel ? "an" : "a", name);
+}
+
 std::optional<std::string> scalar(detail::Diagnostics& check, const YAML::Node& node, const char* what) {
   if (!node.IsScalar()) {
     check.error(node, fmt::format("{} must be a single value", what));
@@ -97,8 +104,8 @@ class Validator {
     }
     const StageInfo& info = registered->info();
     if (required_role && info.role != *required_role) {
-      check_.error(plugin_node, fmt::format("'{}' is a {} stage but this parameter needs a {} stage", *name,
-                                            to_string(info.role), to_string(*required_role)));
+      check_.error(plugin_node, fmt::format("'{}' is {} but this parameter needs {}", *name, a_stage(info.role),
+                                            a_stage(*required_role)));
       return std::nullopt;
     }
     config.plugin = *name;
@@ -273,9 +280,9 @@ class StageOrder {
                                         stage.plugin, medial_input_.filename().string()));
       assume_extraction(stage.plugin);
     } else if (stage.role != Role::Conditioning && !has_medial_) {
-      check_.error(node, fmt::format("'{}' is a {} stage and needs a medial complex: put an extraction stage "
+      check_.error(node, fmt::format("'{}' is {} and needs a medial complex: put an extraction stage "
                                      "before it, or give `medial_input: FILE.ma`",
-                                     stage.plugin, to_string(stage.role)));
+                                     stage.plugin, a_stage(stage.role)));
     }
     shape_parts(node, stage);
   }

@@ -96,7 +96,7 @@ TEST_CASE("a value outside a choice lists the choices and the nearest one", "[pi
 
 TEST_CASE("a stage that needs a medial complex before any extraction is a role error", "[pipeline]") {
   check_single(scratch_dir("pipeline_role"), with_input("stages:\n  - plugin: test_count\n  - plugin: test_centroid\n"),
-               {3, 5, {"'test_count' is a evaluation stage", "needs a medial complex",
+               {3, 5, {"'test_count' is an evaluation stage", "needs a medial complex",
                        "put an extraction stage before it"}});
 }
 

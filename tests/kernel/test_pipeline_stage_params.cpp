@@ -64,7 +64,7 @@ TEST_CASE("a nested stage of the wrong role is reported at its plugin name", "[p
   CHECK(diagnostics[0].line == 5);
   CHECK(diagnostics[0].column == 24);
   CHECK_THAT(diagnostics[0].message,
-             Catch::Contains("'test_count' is a evaluation stage but this parameter needs a significance stage"));
+             Catch::Contains("'test_count' is an evaluation stage but this parameter needs a significance stage"));
 }
 
 TEST_CASE("errors inside a nested stage carry their own positions", "[pipeline][nested]") {

@@ -203,6 +203,7 @@ void VmasInput::finish_setup() {
 }
 
 Sphere VmasInput::shrinking_ball(const Vec3& p, const Vec3& n) const {
+  if (options.sb_contacts == BallContacts::Faces && aabb_) return shrink_on_faces(p, n);
   services::ShrinkingBallOptions o;
   o.initial_radius = options.sb_initial_radius * diagonal;
   o.max_iterations = options.sb_max_iterations;
@@ -210,6 +211,34 @@ Sphere VmasInput::shrinking_ball(const Vec3& p, const Vec3& n) const {
   o.denoise_angle_deg = options.sb_angle_deg;
   const services::MedialBall b = services::shrinking_ball(*kd_, p, n, o);
   return {b.centre, b.radius};
+}
+
+// The ball touches p and the closest point q of the faces to its centre; it shrinks to the ball
+// through p and q tangent at p (r = |p − q|² / 2n·(p − q)), as in the vertex version, and stops
+// as the CGAL port's does: converged (q at distance r), q within 1e-3·scale of p (q is p's own
+// face), the same closest face twice, a ball that would shrink below sb_min_radius, or the
+// denoising angle.
+Sphere VmasInput::shrink_on_faces(const Vec3& p, const Vec3& n) const {
+  const double tolerance = options.sb_tolerance * scale;
+  const double min_cos = std::cos(options.sb_angle_deg * M_PI / 180.0);
+  double r = options.sb_initial_radius * diagonal;
+  Vec3 c = p - r * n;
+  Index last_face = 0;
+  for (int j = 0; j <= options.sb_max_iterations; ++j) {
+    const services::ClosestPoint cp = aabb_->closest(c);
+    const Vec3& q = cp.point;
+    if (cp.distance >= r - tolerance || (q - p).norm() <= 1e-3 * scale || (j > 0 && cp.face == last_face)) break;
+    const double den = n.dot(p - q);
+    if (den <= 0) break;
+    const double r_new = (p - q).squaredNorm() / (2 * den);
+    if (r_new < options.sb_min_radius * scale) break;
+    const Vec3 c_new = p - r_new * n;
+    if (j > 0 && (p - c_new).normalized().dot((q - c_new).normalized()) > min_cos) break;
+    c = c_new;
+    r = r_new;
+    last_face = cp.face;
+  }
+  return {c, r};
 }
 
 Index VmasInput::nearest_vertex(const Vec3& p) const { return kd_->nearest(p).first; }

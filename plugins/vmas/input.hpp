@@ -10,6 +10,8 @@
 #include <medax/surface.hpp>
 
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace medax::services {
@@ -21,6 +23,13 @@ namespace medax::vmas {
 
 enum class InputKind { Mesh, Cloud };
 
+/// Where a shrinking ball finds its second contact: the nearest input vertex (k-d tree, Ma et al.
+/// 2012 and the CGoGN code) or the nearest point on the mesh's faces (AABB tree, the CGAL port).
+enum class BallContacts { Vertices, Faces };
+
+inline const std::vector<std::pair<std::string, BallContacts>> kBallContacts{{"vertices", BallContacts::Vertices},
+                                                                             {"faces", BallContacts::Faces}};
+
 struct InputOptions {
   std::size_t knn = 6;              ///< k of the kNN graph and diffused quadrics (clouds)
   bool shrinking_balls = true;      ///< precompute SB[v] for every vertex (splits, first sphere)
@@ -28,6 +37,8 @@ struct InputOptions {
   int sb_max_iterations = 30;
   double sb_tolerance = 1e-5;       ///< × scale (max bbox side)
   double sb_angle_deg = 20.0;       ///< denoising angle
+  BallContacts sb_contacts = BallContacts::Vertices;  ///< faces: meshes only (clouds use their points)
+  double sb_min_radius = 0.01;      ///< faces: a ball stops before shrinking below this, × scale
 };
 
 class VmasInput {
@@ -71,6 +82,8 @@ class VmasInput {
  private:
   VmasInput();
   void finish_setup();
+  /// The CGAL port's shrinking ball: second contacts on the faces (closest points), see input.cpp.
+  Sphere shrink_on_faces(const Vec3& p, const Vec3& n) const;
   std::unique_ptr<services::PointIndex> kd_;
   std::unique_ptr<services::SurfaceDistance> aabb_;
   std::vector<Vec3> face_normals_;

@@ -181,6 +181,13 @@ void VmasStage::declare(ParamBinder& p) {
       .in_unit("bbox diagonal");
   p.add("sb_max_iters", in.sb_max_iterations, "Shrinking-ball iterations").at_least(1);
   p.add("sb_angle_deg", in.sb_angle_deg, "Shrinking-ball denoising angle").range(0, 90).in_unit("degree");
+  p.add("sb_contacts", in.sb_contacts, kBallContacts,
+        "Second contact of a shrinking ball (split seeds and correction): the nearest vertex (the CGoGN code), or "
+        "the closest point on the faces (the CGAL port; meshes only)");
+  p.add("sb_min_radius", in.sb_min_radius,
+        "sb_contacts: faces: a ball stops before shrinking below this radius (the CGAL port's 0.01)")
+      .at_least(0)
+      .in_unit("scale");
   p.add("max_iterations", o.max_iterations, "Iteration cap (warns when reached)").at_least(1);
   p.add("stall_iterations", o.stall_iterations,
         "Stop, with a warning that says why, when neither the sphere count nor the total error has improved for "

@@ -53,8 +53,8 @@ VmasOptions count_options(std::size_t target) {
   return o;
 }
 
-VmasSolver solve(const SurfaceMesh& mesh, const VmasOptions& o) {
-  VmasSolver s(VmasInput::from_mesh(mesh), o);
+VmasSolver solve(const SurfaceMesh& mesh, const VmasOptions& o, const InputOptions& in = {}) {
+  VmasSolver s(VmasInput::from_mesh(mesh, in), o);
   s.run();
   s.finish();
   return s;
@@ -171,6 +171,53 @@ TEST_CASE("vmas capsule: centres on the axis and the skeleton is a path") {
   CHECK(components(mc.num_vertices(), mc.edges, mc.faces) == 1);
   CHECK(mc.edges.size() == mc.num_vertices() - 1);
   CHECK(mc.faces.empty());
+}
+
+TEST_CASE("vmas shrinking balls on the vertices and on the faces: a sphere's balls") {
+  // The only maximal ball of a sphere is the sphere. Balls through the vertices stop within the
+  // tessellation's reach of it (< 4% of R here). The CGAL port's face balls stop earlier (the same
+  // closest face twice ends them, though the ball may still shrink): each is an empty ball through
+  // its surface point, at most 20% of R from the centre.
+  const SurfaceMesh mesh = testing::make_sphere(1.0, 4);  // 2562 vertices, faces within 1.3e-3 of the sphere
+  const services::SurfaceDistance distance(mesh);
+  for (const BallContacts contacts : {BallContacts::Vertices, BallContacts::Faces}) {
+    InputOptions in;
+    in.sb_contacts = contacts;
+    const auto input = VmasInput::from_mesh(mesh, in);
+    const double reach = contacts == BallContacts::Vertices ? 0.04 : 0.2;
+    const auto check_ball = [&](const Sphere& b) {
+      const Vec3 centre = b.centre + input->origin;
+      CHECK(centre.norm() < reach);
+      CHECK(b.radius > 1.0 - reach);
+      CHECK(b.radius <= distance.distance(centre) + 2.5e-3);  // empty, up to the faces' sagitta
+    };
+    INFO("sb_contacts " << choice_name(kBallContacts, contacts));
+    for (std::size_t v = 0; v < mesh.vertices.size(); v += 97) {  // the split seeds SB[v]
+      INFO("vertex " << v << ": centre " << input->vertex_balls[v].centre.transpose() << " r "
+                     << input->vertex_balls[v].radius);
+      check_ball(input->vertex_balls[v]);
+    }
+    // The correction of an off-centre sphere: the ball from its centre's closest surface point.
+    const Sphere b = input->correct({Vec3(0.3, 0.1, -0.2) - input->origin, 0.4});
+    INFO("corrected: centre " << b.centre.transpose() << " r " << b.radius);
+    check_ball(b);
+  }
+}
+
+TEST_CASE("vmas with shrinking balls on the faces: capsule centres on the axis") {
+  const double rho = 0.2, half = 0.6;
+  const SurfaceMesh mesh = testing::make_capsule(rho, half, 32);
+  InputOptions in;
+  in.sb_contacts = BallContacts::Faces;
+  const VmasSolver solver = solve(mesh, count_options(8), in);
+  const MedialComplex mc = solver.complex(true);
+  REQUIRE(mc.num_vertices() == 8);
+  for (std::size_t i = 0; i < mc.num_vertices(); ++i) {
+    INFO("sphere " << i << " at " << mc.centres[i].transpose() << " r " << mc.radii[i]);
+    CHECK(testing::capsule_axis_distance(mc.centres[i], half) < 0.02 * diagonal(mesh));
+    CHECK(std::abs(mc.radii[i] - rho) < 0.05 * rho);
+  }
+  CHECK(mc.edges.size() == mc.num_vertices() - 1);
 }
 
 TEST_CASE("vmas thick plate: centres on the mid-plane and triangles") {
@@ -568,14 +615,17 @@ TEST_CASE("vmas gives identical results across thread counts") {
   authors.stop_test = StopTest::AfterSplit;
   authors.initial_sphere = InitialSphere::BoxCorner;
   authors.sqem_rows = SqemRows::AuthorCode;
-  for (const VmasOptions& options : {count_options(30), authors}) {
+  InputOptions faces;  // and the CGAL port's shrinking ball
+  faces.sb_contacts = BallContacts::Faces;
+  faces.sb_angle_deg = 30;
+  for (const auto& [options, in] : {std::make_pair(count_options(30), InputOptions{}), std::make_pair(authors, faces)}) {
     const auto run_with = [&](int threads) {
       // global_control caps the threads; an arena of that size makes TBB use them even on a
       // machine with fewer cores.
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
       tbb::task_arena arena(threads);
       return arena.execute([&] {
-        const VmasSolver s = solve(mesh, options);
+        const VmasSolver s = solve(mesh, options, in);
         return std::make_pair(s.complex(true), s.assignment());
       });
     };

@@ -11,6 +11,7 @@
 #endif
 
 #include <medax/io.hpp>
+#include <medax/services/closest_point.hpp>
 #include <medax/services/envelope.hpp>
 
 #include <tbb/global_control.h>
@@ -61,6 +62,20 @@ SurfaceMesh unit_box(SurfaceMesh mesh) {
   return mesh;
 }
 
+/// How far the output spheres are from maximal: r / d(centre, surface) is 1 for a medial ball.
+void print_maximality(const SurfaceMesh& mesh, const MedialComplex& mc) {
+  const services::SurfaceDistance surface(mesh);
+  std::size_t shallow = 0;
+  double lowest = 1e300;
+  for (std::size_t i = 0; i < mc.num_vertices(); ++i) {
+    const double ratio = mc.radii[i] / surface.distance(mc.centres[i]);
+    lowest = std::min(lowest, ratio);
+    shallow += ratio < 0.95 ? 1 : 0;
+  }
+  std::fprintf(stderr, "  spheres with r < 0.95 d(centre, surface): %zu of %zu, lowest r/d %.3f\n", shallow,
+               mc.num_vertices(), lowest);
+}
+
 double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
 #ifdef MEDAX_VMAS_HAVE_EVALUATION
   evaluation::ReconstructionOptions o;  // VMAS protocol: vertices + envelope grid of min side / 150
@@ -69,13 +84,18 @@ double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
   std::fprintf(stderr, "  surface->envelope %.3f%%, envelope->surface %.3f%% (%zu envelope points)\n",
                100.0 * r.surface_to_envelope_max / r.diagonal, 100.0 * r.envelope_to_surface_max / r.diagonal,
                r.envelope.size());
-  if (std::getenv("VMAS_TABLE1_WORST")) {  // where the surface is farthest from the envelope
-    const services::Envelope env(mc);
-    const auto d = env.signed_distances(shape.mesh.vertices);
-    const std::size_t worst = static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
+  // The other convention for the surface side: a vertex inside the envelope counts 0 (distance to
+  // the spheres, cones and slabs as solids) instead of its depth below the envelope's boundary.
+  const services::Envelope env(mc);
+  const auto d = env.signed_distances(shape.mesh.vertices);
+  const std::size_t worst = static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
+  const double outside_only = std::max(0.0, d[worst]);
+  std::fprintf(stderr, "  solids convention (inside counts 0): surface->envelope %.3f%%, two-sided %.3f%%\n",
+               100.0 * outside_only / r.diagonal,
+               100.0 * std::max(outside_only, r.envelope_to_surface_max) / r.diagonal);
+  if (std::getenv("VMAS_TABLE1_WORST"))  // where the surface is farthest outside the envelope
     std::fprintf(stderr, "  worst surface vertex %zu at (%.3f %.3f %.3f): %.3f%%\n", worst, shape.mesh.vertices[worst].x(),
                  shape.mesh.vertices[worst].y(), shape.mesh.vertices[worst].z(), 100.0 * d[worst] / r.diagonal);
-  }
   return 100.0 * r.hausdorff() / r.diagonal;
 #else
   (void)shape, (void)mc;
@@ -155,6 +175,7 @@ int main(int argc, char** argv) {
       }
       iterations = solver.iterations();
     }
+    print_maximality(shape.mesh, mc);
     const double err = evaluate ? hausdorff_percent(shape, mc) : -1.0;
     std::printf("| %s | %zu | %zu | %zu | %zu | %zu | %d | %.3f%% | %.3f%% | %.2f | %.3f | %.3f | %.3f |\n", m.name.c_str(),
                 shape.mesh.vertices.size(), m.spheres, mc.num_vertices(), mc.edges.size(), mc.faces.size(), iterations,

@@ -17,10 +17,12 @@ struct ReconstructionOptions {
   double step = 0;                  ///< absolute grid step; 0 = from `resolution`
   bool use_vertices = true;         ///< surface samples include the mesh vertices
   std::size_t uniform_samples = 0;  ///< plus this many area-uniform surface samples
-  /// Guard for very thin shapes (where the smallest side is tiny): when the surface's area
-  /// would give more envelope points than this, the step from `resolution` is enlarged to fit
-  /// (0: no guard; an explicit `step` is always used as given).
-  std::size_t max_envelope_samples = 5'000'000;
+  /// Budget of envelope boundary points (issue 16): when the surface's area would give more
+  /// points than this at the step from `resolution` (about 1.5 × area / step²), the step is
+  /// enlarged to fit, which bounds the cost on slender shapes. 0: no budget, the VMAS rule
+  /// alone (the sampling before issue 16, e.g. for VMAS's Table 1). An explicit `step` is
+  /// always used as given.
+  std::size_t max_envelope_samples = 20'000;
 };
 
 struct ReconstructionResult {

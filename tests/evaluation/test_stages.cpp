@@ -146,9 +146,43 @@ TEST_CASE("reconstruction: a complex that misses part of the shape: surface to e
   const Metrics m = reconstruction(shape, mc);
   // The top pole is at distance half from the envelope's top.
   CHECK(m.at("surface_to_envelope_max") == Approx(half).margin(1e-9));
-  // The top of the envelope, (0, 0, radius), is `radius` from the capsule wall.
-  CHECK(m.at("envelope_to_surface_max") == Approx(radius).margin(0.01));
+  // The top of the envelope, (0, 0, radius), is `radius` from the capsule wall; the samples miss
+  // it by at most their covering radius (below a step).
+  CHECK(m.at("envelope_to_surface_max") <= radius + 1e-9);
+  CHECK(m.at("envelope_to_surface_max") >= radius - m.at("envelope_step"));
   CHECK(m.at("hausdorff") == Approx(half).margin(1e-9));
+}
+
+TEST_CASE("reconstruction: the default point budget enlarges a slender shape's step; 0 keeps the VMAS rule",
+          "[reconstruction]") {
+  // The capsule and half-axis complex above: surface → envelope is exact at any step, envelope →
+  // surface within the samples' covering radius (below a step).
+  const double radius = 0.3, half = 0.7;
+  Shape shape;
+  shape.mesh = testing::make_capsule(radius, half, 96);
+  MedialComplex mc;
+  mc.add_vertex({0, 0, -half}, radius);
+  mc.add_vertex({0, 0, 0}, radius);
+  mc.add_edge(0, 1);
+  // resolution 40: the VMAS rule's step is 0.6 / 40, which would give about 1.5 × area / step²
+  // ≈ 25,000 points on the capsule's surface, more than the default budget.
+  const Metrics vmas = reconstruction(shape, mc, {{"resolution", 40LL}, {"max_envelope_samples", 0LL}});
+  const Metrics budget = reconstruction(shape, mc, {{"resolution", 40LL}});
+  const double area = services::surface_area(shape.mesh);
+  const double allowed = static_cast<double>(evaluation::ReconstructionOptions{}.max_envelope_samples);
+  REQUIRE(1.5 * area / (0.015 * 0.015) > allowed);
+  CHECK(vmas.at("envelope_step") == Approx(0.6 / 40));
+  CHECK(budget.at("envelope_step") == Approx(std::sqrt(1.5 * area / allowed)));
+  CHECK(budget.at("envelope_samples") < vmas.at("envelope_samples"));
+  // About 1.5 points per step² of ∂E (here half the capsule: the budget is on the surface's area).
+  const double step = budget.at("envelope_step");
+  CHECK(budget.at("envelope_samples") == Approx(1.5 * budget.at("envelope_area") / (step * step)).epsilon(0.1));
+  CHECK(budget.at("envelope_samples") <= allowed);
+  for (const Metrics* m : {&vmas, &budget}) {
+    CHECK(m->at("surface_to_envelope_max") == Approx(half).margin(1e-9));
+    CHECK(m->at("envelope_to_surface_max") <= radius + 1e-9);
+    CHECK(m->at("envelope_to_surface_max") >= radius - m->at("envelope_step"));
+  }
 }
 
 TEST_CASE("reconstruction: options: uniform surface samples, seeding, point clouds, steps", "[reconstruction]") {
@@ -447,6 +481,7 @@ TEST_CASE("reconstruction: a cancel stops the envelope loops within a few hundre
   evaluation::ReconstructionStage stage;
   ParamSet params;
   params.set("resolution", ParamValue(400LL));
+  params.set("max_envelope_samples", ParamValue(0LL));  // no budget: the fine grid
   stage.configure(params);
   for (long cancel_at : {1L, 10L, 100L, 1000L, 3000L}) {
     CancelAtPoll ctx(cancel_at);
@@ -465,6 +500,7 @@ TEST_CASE("reconstruction: a cancel from another thread ends the stage promptly"
   evaluation::ReconstructionStage stage;
   ParamSet params;
   params.set("resolution", ParamValue(1000LL));  // tens of seconds uncancelled
+  params.set("max_envelope_samples", ParamValue(0LL));
   stage.configure(params);
   FlagContext ctx;
   std::chrono::steady_clock::time_point cancelled_at;

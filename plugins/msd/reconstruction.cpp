@@ -23,28 +23,26 @@ struct Box {
   Vec3 high = Vec3::Constant(std::numeric_limits<double>::lowest());
 };
 
-Box fitted_bounds(const std::vector<Primitive>& primitives) {
+Box bounds(const std::vector<SurfaceMesh>& solids) {
   Box box;
-  for (const Primitive& p : primitives) {
-    if (!p.fitted) continue;
-    for (const Vec3& x : primitive_vertices(p.shape, p.radius)) {
+  for (const SurfaceMesh& s : solids)
+    for (const Vec3& x : s.vertices) {
       box.low = box.low.cwiseMin(x);
       box.high = box.high.cwiseMax(x);
     }
-  }
   return box;
 }
 
-/// T_P's level set; coordinates relative to `origin` so that floats keep their precision.
-openvdb::FloatGrid::Ptr primitive_level_set(const Primitive& p, const Vec3& origin,
-                                            const openvdb::math::Transform& transform) {
+/// A solid's level set; coordinates relative to `origin` so that floats keep their precision.
+openvdb::FloatGrid::Ptr level_set(const SurfaceMesh& solid, const Vec3& origin,
+                                  const openvdb::math::Transform& transform) {
   std::vector<openvdb::Vec3s> points;
-  for (const Vec3& x : primitive_vertices(p.shape, p.radius)) {
+  for (const Vec3& x : solid.vertices) {
     const Vec3 local = x - origin;
     points.emplace_back(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z()));
   }
   std::vector<openvdb::Vec3I> triangles;
-  for (const Tri& f : p.shape.faces)
+  for (const Tri& f : solid.faces)
     triangles.emplace_back(static_cast<unsigned>(f[0]), static_cast<unsigned>(f[1]), static_cast<unsigned>(f[2]));
   return openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(transform, points, triangles, kHalfWidth);
 }
@@ -82,32 +80,47 @@ void orient_outward(SurfaceMesh& mesh) {
 }
 
 double voxel_size(const Box& box, const SdfOptions& options) {
-  if (!(box.low.x() <= box.high.x())) return 0;  // no fitted primitive
+  if (!(box.low.x() <= box.high.x())) return 0;  // no vertex
   return (box.high - box.low).maxCoeff() / std::max(1, options.resolution);
 }
 
 }  // namespace
 
-double sdf_voxel_size(const std::vector<Primitive>& primitives, const SdfOptions& options) {
-  return voxel_size(fitted_bounds(primitives), options);
+std::vector<SurfaceMesh> fitted_surfaces(const std::vector<Primitive>& primitives) {
+  std::vector<SurfaceMesh> solids;
+  for (const Primitive& p : primitives)
+    if (p.fitted) solids.push_back(primitive_mesh(p));
+  return solids;
 }
 
-ReconstructedSurface reconstruct_sdf(const std::vector<Primitive>& primitives, const Similarity& to_input,
+std::vector<SurfaceMesh> refined_surfaces(const std::vector<RefinedPrimitive>& refined) {
+  std::vector<SurfaceMesh> solids;
+  for (const RefinedPrimitive& r : refined)
+    if (!r.mesh.faces.empty()) solids.push_back(r.mesh);
+  return solids;
+}
+
+double sdf_voxel_size(const std::vector<SurfaceMesh>& solids, const SdfOptions& options) {
+  return voxel_size(bounds(solids), options);
+}
+
+ReconstructedSurface reconstruct_sdf(const std::vector<SurfaceMesh>& input, const Similarity& to_input,
                                      const SdfOptions& options) {
-  const Box box = fitted_bounds(primitives);
+  std::vector<const SurfaceMesh*> solids;
+  for (const SurfaceMesh& s : input)
+    if (!s.faces.empty()) solids.push_back(&s);
+  const Box box = bounds(input);
   const double voxel = voxel_size(box, options);
-  if (!(voxel > 0)) throw std::invalid_argument("no fitted primitive to reconstruct Ŝ from");
+  if (solids.empty() || !(voxel > 0))
+    throw std::invalid_argument("no primitive surface to build Ŝ from (every primitive failed or was left out)");
   openvdb::initialize();
   const Vec3 origin = box.low;
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel);
-  std::vector<const Primitive*> fitted;
-  for (const Primitive& p : primitives)
-    if (p.fitted) fitted.push_back(&p);
-  // One level set per primitive in parallel (a primitive alone keeps OpenVDB's own threads idle),
-  // then the union in primitive order.
-  std::vector<openvdb::FloatGrid::Ptr> grids(fitted.size());
-  tbb::parallel_for(std::size_t{0}, fitted.size(),
-                    [&](std::size_t k) { grids[k] = primitive_level_set(*fitted[k], origin, *transform); });
+  // One level set per solid in parallel (a solid alone keeps OpenVDB's own threads idle), then the
+  // union in the solids' order.
+  std::vector<openvdb::FloatGrid::Ptr> grids(solids.size());
+  tbb::parallel_for(std::size_t{0}, solids.size(),
+                    [&](std::size_t k) { grids[k] = level_set(*solids[k], origin, *transform); });
   openvdb::FloatGrid::Ptr united = grids.front();
   for (std::size_t k = 1; k < grids.size(); ++k) {
     openvdb::tools::csgUnion(*united, *grids[k]);  // the minimum of the two distances
@@ -118,7 +131,7 @@ ReconstructedSurface reconstruct_sdf(const std::vector<Primitive>& primitives, c
   orient_outward(result.surface);
   result.to_input = to_input;
   result.method = fmt::format("signed distance, {} voxels across (voxel {:.3g}), union of {} primitives (OpenVDB)",
-                              options.resolution, voxel, fitted.size());
+                              options.resolution, voxel, solids.size());
   return result;
 }
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <stdexcept>
 
 namespace medax::msd {
@@ -18,9 +19,11 @@ using Clock = MsdStage::Clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+/// Process CPU time (all threads) since `start`.
+double cpu_seconds_since(std::clock_t start) { return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC; }
 
 const char* kRadiusRule = "vertex radius = mean ρ of the vertex primitive (ρ0 when its fit failed)";
-const char* kCountRule = "MSD (Guo et al. 2024 §6): N_d = #v + #e + #f, N_c = Σ|V(T_P)| + 3·#v over fitted primitives";
+const char* kCountRule = "MSD (Guo et al. 2024 §6): N_d = #v + #e + #f, N_c = Σ|V(T_P)| + 3·#v over the final (refined or fitted) primitives";
 
 std::string iteration_line(const IterationLog& it) {
   const Energy& e = it.energy;
@@ -47,13 +50,7 @@ void MsdStage::declare(ParamBinder& p) {
   declare_optimisation(p);
   declare_fitting(p);
   declare_construction(p);
-  p.add("reconstruction", reconstruction_, {{"sdf", ReconstructionMode::Sdf}, {"none", ReconstructionMode::None}},
-        "Ŝ = ∪ T_P by a signed-distance grid meshed by OpenVDB (published for the evaluation stages, written as "
-        "<id>_reconstruction.off; costs about as much as the optimisation, so off unless asked), or not built");
-  p.add("reconstruction_resolution", sdf_.resolution,
-        "voxels of Ŝ's grid across the longest side of the primitives' bounding box (paper: 256)")
-      .range(8, 4096);
-  p.add("write_primitives", write_primitives_, "write every primitive into <id>_primitives.ply");
+  declare_outputs(p);
 }
 
 void MsdStage::declare_optimisation(ParamBinder& p) {
@@ -117,6 +114,32 @@ void MsdStage::declare_construction(ParamBinder& p) {
       .range(0, 180).in_unit("deg");
 }
 
+void MsdStage::declare_outputs(ParamBinder& p) {
+  p.add("refine", refine_, "S7: refine every fitted primitive so that it reproduces the part of S it covers with S's "
+                           "own vertices and triangles (paper §5.4); off gives the fitting-only MSD");
+  p.add("select_distance", refine_options_.select_distance,
+        "refinement: a vertex of S is selected when its distance to T_P is below this (authors' code: 1e-3)")
+      .range(0, 1).in_unit("unit box");
+  p.add("select_reach", refine_options_.select_reach,
+        "refinement: ... or when the segment from the element to it does not cross S and meets T_P within this "
+        "many mean edge lengths ℓ̄ of it (authors' code: 2)").range(0, 1e3);
+  p.add("cleanup_length", refine_options_.cleanup_length,
+        "refinement clean-up: edges shorter than this that carry no matched geometry are collapsed (authors' "
+        "code: 5e-3)").range(0, 1).in_unit("unit box");
+  p.add("reconstruction", reconstruction_,
+        {{"union", ReconstructionMode::Union}, {"sdf", ReconstructionMode::Sdf}, {"none", ReconstructionMode::None}},
+        "Ŝ = ∪ T_P, published for the evaluation stages and written as <id>_reconstruction.off: `union` keeps the "
+        "primitives' triangles outside the others (no grid; for the error figures), `sdf` meshes a signed-distance "
+        "grid by OpenVDB (the paper's timed SDF reconstruction), `none` builds nothing");
+  p.add("union_tolerance", union_.tolerance,
+        "union: a point is inside another primitive only deeper than this (shared faces are kept)")
+      .range(0, 1e-3).in_unit("unit box");
+  p.add("reconstruction_resolution", sdf_.resolution,
+        "sdf: voxels of Ŝ's grid across the longest side of the primitives' bounding box (paper: 256)")
+      .range(8, 4096);
+  p.add("write_primitives", write_primitives_, "write every final primitive into <id>_primitives.ply");
+}
+
 void MsdStage::check_scene(const Scene& scene) const {
   if (scene.shape.mesh.faces.size() < 4)
     throw std::invalid_argument("the shape has no closed surface mesh; MSD fits primitives against S "
@@ -146,14 +169,40 @@ void MsdStage::simplify(const Shape& shape, MedialComplex& medial, Context& ctx)
                        result.seconds_tetrahedralisation));
   ctx.info(fmt::format("final fit of {} primitives: {:.3f} s", result.best.primitives.size(), result.seconds_final_fit));
   medial = skeleton_complex(result.best);
-  write_outputs(shape, result, start, ctx);
+  Summary summary;
+  const std::vector<RefinedPrimitive> primitives = final_primitives(target, result.best, summary.refinement, ctx);
+  write_outputs(shape, result, primitives, summary, start, ctx);
 }
 
-void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& result, Clock::time_point start,
-                             Context& ctx) {
+std::vector<RefinedPrimitive> MsdStage::final_primitives(const TargetMesh& target, const Diagram& best,
+                                                         RefinementSummary& summary, Context& ctx) const {
+  if (!refine_) return unrefined_primitives(best.primitives);
+  summary.enabled = true;
+  const auto start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  std::vector<RefinedPrimitive> refined = refine_primitives(best.primitives, target, refine_options_);
+  summary.seconds = seconds_since(start);
+  summary.cpu_seconds = cpu_seconds_since(cpu_start);
+  for (std::size_t k = 0; k < refined.size(); ++k) {
+    if (!best.primitives[k].fitted) continue;
+    if (refined[k].refined) {
+      ++summary.refined;
+      continue;
+    }
+    ++summary.unrefined;
+    summary.notes.emplace_back(k, refined[k].note);
+    ctx.info(fmt::format("primitive {} left unrefined (its fitted T_P is kept): {}", k, refined[k].note));
+  }
+  ctx.info(fmt::format("refinement: {} primitives refined, {} left unrefined; {:.3f} s ({:.3f} s CPU)", summary.refined,
+                       summary.unrefined, summary.seconds, summary.cpu_seconds));
+  return refined;
+}
+
+void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& result,
+                             const std::vector<RefinedPrimitive>& primitives, Summary& summary,
+                             Clock::time_point start, Context& ctx) {
   const Diagram& best = result.best;
-  Summary summary;
-  summary.counts = count_elements(best);
+  summary.counts = count_elements(best, primitives);
   summary.input_vertices = shape.mesh.vertices.size();
   summary.input_triangles = shape.mesh.faces.size();
   summary.covered_area = -best.coverage.energy;
@@ -164,8 +213,8 @@ void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& resul
   summary.radius_rule = kRadiusRule;
   if (write_primitives_)
     ctx.write_output(ctx.stage_id() + "_primitives.ply",
-                     [&](std::ostream& out) { write_primitives_ply(out, best.primitives, shape.to_input); });
-  if (reconstruction_ == ReconstructionMode::Sdf) publish_reconstruction(shape, best, summary, ctx);
+                     [&](std::ostream& out) { write_primitives_ply(out, primitives, shape.to_input); });
+  if (reconstruction_ != ReconstructionMode::None) publish_reconstruction(shape, primitives, summary, ctx);
   const Counts& c = summary.counts;
   ctx.publish(kRepresentationSize, RepresentationSize{c.discrete, c.continuous, kCountRule});
   summary.seconds_total = seconds_since(start);
@@ -176,9 +225,13 @@ void MsdStage::write_outputs(const Shape& shape, const OptimisationResult& resul
                        c.failed_primitives));
 }
 
-void MsdStage::publish_reconstruction(const Shape& shape, const Diagram& best, Summary& summary, Context& ctx) const {
+void MsdStage::publish_reconstruction(const Shape& shape, const std::vector<RefinedPrimitive>& primitives,
+                                      Summary& summary, Context& ctx) const {
   const auto start = Clock::now();
-  ReconstructedSurface rebuilt = reconstruct_sdf(best.primitives, shape.to_input, sdf_);
+  const std::vector<SurfaceMesh> solids = refined_surfaces(primitives);
+  ReconstructedSurface rebuilt = reconstruction_ == ReconstructionMode::Union
+                                     ? reconstruct_union(solids, shape.to_input, union_)
+                                     : reconstruct_sdf(solids, shape.to_input, sdf_);
   summary.seconds_reconstruction = seconds_since(start);
   summary.reconstruction = rebuilt.method;
   ctx.info(fmt::format("reconstruction Ŝ: {}; {} vertices, {} triangles, {:.3f} s", rebuilt.method,

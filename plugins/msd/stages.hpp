@@ -5,6 +5,8 @@
 #include "optimisation.hpp"
 #include "output.hpp"
 #include "reconstruction.hpp"
+#include "refinement.hpp"
+#include "union_surface.hpp"
 
 #include <medax/stage.hpp>
 
@@ -13,8 +15,9 @@
 
 namespace medax::msd {
 
-/// Whether Ŝ is built (signed-distance grid) and published.
-enum class ReconstructionMode { Sdf, None };
+/// How Ŝ is built and published: the boundary of the union without a grid, a signed-distance
+/// grid, or not at all.
+enum class ReconstructionMode { Union, Sdf, None };
 
 class MsdStage : public SimplificationStage {
  public:
@@ -30,12 +33,21 @@ class MsdStage : public SimplificationStage {
   void declare_optimisation(ParamBinder& p);
   void declare_fitting(ParamBinder& p);
   void declare_construction(ParamBinder& p);
-  void write_outputs(const Shape& shape, const OptimisationResult& result, Clock::time_point start, Context& ctx);
-  void publish_reconstruction(const Shape& shape, const Diagram& best, Summary& summary, Context& ctx) const;
+  void declare_outputs(ParamBinder& p);
+  std::vector<RefinedPrimitive> final_primitives(const TargetMesh& target, const Diagram& best,
+                                                 RefinementSummary& summary, Context& ctx) const;
+  void write_outputs(const Shape& shape, const OptimisationResult& result,
+                     const std::vector<RefinedPrimitive>& primitives, Summary& summary, Clock::time_point start,
+                     Context& ctx);
+  void publish_reconstruction(const Shape& shape, const std::vector<RefinedPrimitive>& primitives, Summary& summary,
+                              Context& ctx) const;
 
   OptimisationOptions options_;
+  bool refine_ = true;
+  RefineOptions refine_options_;
   ReconstructionMode reconstruction_ = ReconstructionMode::None;
   SdfOptions sdf_;
+  UnionOptions union_;
   bool write_primitives_ = true;
 };
 

@@ -1,6 +1,6 @@
 // Ŝ = ∪ T_P by the signed-distance grid (plugins/msd/reconstruction): a sphere primitive gives a
 // sphere within a voxel; a union of primitives is one closed 2-manifold holding every base point;
-// the same surface with 1 or 2 threads.
+// the same surface with 1 or 2 threads; a failed primitive has no surface.
 #include "mesh_checks.hpp"
 #include "primitive_template.hpp"
 #include "reconstruction.hpp"
@@ -45,9 +45,9 @@ TEST_CASE("msd Ŝ of one sphere primitive is the sphere of radius ρ within a vo
   const std::vector<Primitive> sphere{constant_primitive({ElementKind::Vertex, {0, 0, 0}, {centre, centre, centre}},
                                                          rho, 1588)};
   const SdfOptions options;  // the paper's 256 voxels across
-  const double voxel = sdf_voxel_size(sphere, options);
+  const double voxel = sdf_voxel_size(fitted_surfaces(sphere), options);
   CHECK(voxel == Approx(2 * rho / 256).epsilon(0.01));
-  const ReconstructedSurface rebuilt = reconstruct_sdf(sphere, Similarity{}, options);
+  const ReconstructedSurface rebuilt = reconstruct_sdf(fitted_surfaces(sphere), Similarity{}, options);
   const SurfaceMesh& mesh = rebuilt.surface;
   REQUIRE(mesh.faces.size() > 1000);
   double worst = 0;
@@ -58,8 +58,12 @@ TEST_CASE("msd Ŝ of one sphere primitive is the sphere of radius ρ within a vo
 }
 
 TEST_CASE("msd Ŝ of a ball, a capsule and a slab is one closed 2-manifold holding every base point") {
-  const std::vector<Primitive> primitives = three_primitives();
-  const ReconstructedSurface rebuilt = reconstruct_sdf(primitives, Similarity{}, SdfOptions{64});
+  std::vector<Primitive> primitives = three_primitives();
+  primitives.push_back(primitives.front());
+  primitives.back().fitted = false;  // a failed primitive is left out
+  const std::vector<SurfaceMesh> solids = fitted_surfaces(primitives);
+  REQUIRE(solids.size() == 3);
+  const ReconstructedSurface rebuilt = reconstruct_sdf(solids, Similarity{}, SdfOptions{64});
   const SurfaceMesh& mesh = rebuilt.surface;
   check_closed_manifold(mesh.faces, mesh.vertices.size());
   std::size_t outside = 0, tested = 0;
@@ -68,14 +72,14 @@ TEST_CASE("msd Ŝ of a ball, a capsule and a slab is one closed 2-manifold holdi
       outside += winding(mesh.vertices, mesh.faces, p.shape.base[i]) < 0.5;
   CHECK(tested > 50);
   CHECK(outside == 0);
-  CHECK_THROWS_WITH(reconstruct_sdf({}, Similarity{}), Catch::Contains("no fitted primitive"));
+  CHECK_THROWS_WITH(reconstruct_sdf({}, Similarity{}), Catch::Contains("no primitive surface"));
 }
 
 TEST_CASE("msd Ŝ is the same surface with 1 or 2 threads") {
-  const std::vector<Primitive> primitives = three_primitives();
+  const std::vector<SurfaceMesh> solids = fitted_surfaces(three_primitives());
   const auto rebuild = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return reconstruct_sdf(primitives, Similarity{}, SdfOptions{96}).surface;
+    return reconstruct_sdf(solids, Similarity{}, SdfOptions{96}).surface;
   };
   const SurfaceMesh one = rebuild(1), two = rebuild(2);
   CHECK(one.vertices == two.vertices);

@@ -1,0 +1,36 @@
+#pragma once
+// Ŝ = ∂(∪ T_P) without a grid (docs/plugins/msd.md, "Reconstruction Ŝ"): every primitive's
+// triangles that lie outside all the other primitives, cut where they enter one. The signed-distance
+// Ŝ (reconstruction.hpp) blurs everything below its voxel (1/256 of the box); this one keeps the
+// primitives' own triangles, so a refined primitive's copy of S's triangles stays exact and ε̄¹ can
+// reach 0, which the paper's error figures (libigl's exact booleans) need.
+#include <medax/reconstructed_surface.hpp>
+
+#include <vector>
+
+namespace medax::msd {
+
+struct UnionOptions {
+  /// A point is inside another primitive when it is on its bounded side and farther than this from
+  /// its surface, in units of the longest bounding-box side of all primitives. Points on or within
+  /// this of a surface are outside, so two primitives sharing S's triangles both keep them.
+  double tolerance = 1e-9;
+};
+
+/// The boundary of the union of closed, outward-oriented triangle meshes, as a triangle mesh in the
+/// working frame (`to_input` copied into the result). Each triangle is judged against every other
+/// solid whose box meets its solid's box, by where its corners are (outside, on the surface within
+/// the tolerance, inside):
+/// - no corner outside and a corner inside, or all on the surface and the centroid inside: dropped;
+/// - a corner inside and a corner outside: clipped, each crossing edge cut where it enters the
+///   solid (bisection down to the tolerance), the outside part re-triangulated;
+/// - otherwise kept whole (a solid poking through its interior without reaching a corner is missed).
+/// Vertices with equal coordinates are merged; of identical triangles one is kept, and a triangle
+/// present in both orientations (two solids touching face to face) is dropped. The result is
+/// watertight only where no cut was made: along the curves where solids cross, the pieces of the
+/// two sides meet without sharing vertices. Deterministic, in parallel over the solids.
+/// Throws std::invalid_argument when `solids` holds no face.
+ReconstructedSurface reconstruct_union(const std::vector<SurfaceMesh>& solids, const Similarity& to_input,
+                                       const UnionOptions& options = {});
+
+}  // namespace medax::msd

@@ -6,6 +6,7 @@
 #
 #   bench/vmas/variants.sh BUILD_DIR [--set vmas.key=value ...]
 #   MESHES="armadillo.off:83 bunny.obj:100" bench/vmas/variants.sh build ...
+#   PIPELINE=pipelines/vmas_samples.yaml bench/vmas/variants.sh build      # the area-sample variant
 set -euo pipefail
 build=$1; shift
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -15,14 +16,14 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for entry in $meshes; do
   mesh=${entry%%:*} count=${entry##*:}
-  MEDAX_PLUGIN_PATH= "$build/bin/medax" run "$root/pipelines/vmas.yaml" --input "$data/$mesh" --out "$out/$mesh" \
+  MEDAX_PLUGIN_PATH= "$build/bin/medax" run "${PIPELINE:-$root/pipelines/vmas.yaml}" --input "$data/$mesh" --out "$out/$mesh" \
     --quiet --set vmas.target_spheres="$count" "$@" > /dev/null 2>&1 || { echo "$mesh failed"; continue; }
   python3 - "$out/$mesh" "$mesh" <<'PY'
 import json, sys
 run, mesh = sys.argv[1], sys.argv[2]
 m = json.load(open(f"{run}/metrics.json"))
 t = {s["id"]: s["seconds"] for s in json.load(open(f"{run}/timings.json"))["stages"]}
-stalled = " stalled" if "stall" in open(f"{run}/log.txt").read() else ""
+stalled = " stalled" if "no progress" in open(f"{run}/log.txt").read() else ""
 print(f"{mesh}\t{int(m['counts']['vertices'])}\t{m['reconstruction']['hausdorff_pct']:.3f}\t{t['vmas']:.2f}{stalled}")
 PY
 done

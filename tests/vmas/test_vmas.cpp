@@ -814,13 +814,15 @@ TEST_CASE("vmas package runs in a pipeline") {
   CHECK(mc.edges.size() == 6);
   CHECK(mc.faces.empty());
 
-  // The shipped pipeline validates when the plugins it names are built.
+  // The shipped pipelines validate when the plugins they name are built.
   Registry all;
   all.load_default();
-  if (all.find("normalize") && all.find("reconstruction") && all.find("vmas")) {
+  if (all.find("normalize") && all.find("reconstruction") && all.find("vmas") && all.find("sample")) {
     CHECK_NOTHROW(load_pipeline(test::source_dir() / "pipelines" / "vmas.yaml", all));
+    CHECK_NOTHROW(load_pipeline(test::source_dir() / "pipelines" / "vmas_samples.yaml", all));
   } else {
-    WARN("pipelines/vmas.yaml not validated: normalize or reconstruction is not built yet");
+    WARN("pipelines/vmas.yaml and vmas_samples.yaml not validated: normalize, sample or reconstruction is not "
+         "built yet");
   }
 }
 

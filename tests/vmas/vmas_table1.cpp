@@ -2,7 +2,7 @@
 // (uniform scale by the largest side, notes §7 #14), λ = 0.2, the sphere count of Table 1,
 // VMAS + its dual, error = two-sided Hausdorff distance of the sphere/cone/slab envelope in %
 // of the bbox diagonal. Not a ctest (it takes tens of seconds): run build/tests/vmas_table1
-// [--threads N] [--repeat R] [--no-eval] [--meshes DIR] [--set key=value ...] [model ...].
+// [--threads N] [--repeat R] [--no-eval] [--meshes DIR] [--set key=value ...] [model | FILE:COUNT ...].
 #include "stages.hpp"
 #include "vmas.hpp"
 
@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
   bool evaluate = true;
   std::vector<std::string> only;
   std::map<std::string, std::string> sets;
+  std::vector<Model> models = kModels;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) threads = std::stoi(argv[++i]);
@@ -120,6 +121,10 @@ int main(int argc, char** argv) {
     else if (a == "--set" && i + 1 < argc) {
       const std::string kv = argv[++i];
       sets[kv.substr(0, kv.find('='))] = kv.substr(kv.find('=') + 1);
+    } else if (a.find(':') != std::string::npos) {  // another mesh: FILE:COUNT (no paper figures)
+      const std::filesystem::path file = a.substr(0, a.rfind(':'));
+      models.push_back({file.stem().string(), file.string(), std::stoul(a.substr(a.rfind(':') + 1)), 0, 0});
+      only.push_back(file.stem().string());
     } else only.push_back(a);
   }
   std::unique_ptr<tbb::global_control> limit;
@@ -127,7 +132,7 @@ int main(int argc, char** argv) {
 
   std::printf("| model | |V| | |M| target | |M| | edges | triangles | iterations | ε (ours) | ε (paper) | ratio | "
               "wall (s) | CPU (s) | paper time (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const Model& m : kModels) {
+  for (const Model& m : models) {
     if (!only.empty() && std::find(only.begin(), only.end(), m.name) == only.end()) continue;
     Shape shape;
     shape.mesh = unit_box(read_mesh(meshes / m.file));
@@ -179,7 +184,7 @@ int main(int argc, char** argv) {
     const double err = evaluate ? hausdorff_percent(shape, mc) : -1.0;
     std::printf("| %s | %zu | %zu | %zu | %zu | %zu | %d | %.3f%% | %.3f%% | %.2f | %.3f | %.3f | %.3f |\n", m.name.c_str(),
                 shape.mesh.vertices.size(), m.spheres, mc.num_vertices(), mc.edges.size(), mc.faces.size(), iterations,
-                err, m.paper_error, err / m.paper_error, best, best_cpu, m.paper_time);
+                err, m.paper_error, m.paper_error > 0 ? err / m.paper_error : 0.0, best, best_cpu, m.paper_time);
     std::fprintf(stderr, "%s: precompute %.3f s; partition %.3f, update %.3f, correction %.3f, errors %.3f, splits %.3f s\n",
                  m.name.c_str(), precompute, phases.partition, phases.update, phases.correction, phases.errors,
                  phases.splits);

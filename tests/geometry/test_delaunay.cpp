@@ -263,3 +263,26 @@ TEST_CASE("Concurrent Delaunay of surface samples (a sphere): identical across t
   for (Vec3& x : p) x = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
   check_thread_independent(p);
 }
+
+TEST_CASE("Delaunay numbers cells by their sorted corners below 50k points", "[geometry][delaunay]") {
+  const auto p = random_points(3000, 19);
+  const auto dt = delaunay_tetrahedralize(p);
+  std::vector<std::array<Index, 4>> sorted;
+  for (auto c : dt.cells) {
+    std::sort(c.begin(), c.end());
+    sorted.push_back(c);
+  }
+  for (std::size_t c = 1; c < sorted.size(); ++c) CHECK(sorted[c - 1] < sorted[c]);
+}
+
+TEST_CASE("Concurrent Delaunay numbers cells along space, whatever the order of the points", "[geometry][delaunay]") {
+  // Points in random order: numbered by their corners' point indices, one cell in seven or so
+  // would jump to a random place of the cube; numbered along the insertion's space-filling
+  // curve, consecutive cells are neighbours in space (and in memory, for whoever walks them).
+  const auto p = random_points(60000, 23);
+  const auto dt = delaunay_tetrahedralize(p, {true, 2});
+  const auto centroid = [&](const std::array<Index, 4>& c) { return (p[c[0]] + p[c[1]] + p[c[2]] + p[c[3]]) / 4; };
+  std::size_t jumps = 0;  // consecutive cells farther apart than about four point spacings (0.025)
+  for (std::size_t c = 1; c < dt.cells.size(); ++c) jumps += (centroid(dt.cells[c]) - centroid(dt.cells[c - 1])).norm() > 0.1;
+  CHECK(jumps < dt.cells.size() / 100);
+}

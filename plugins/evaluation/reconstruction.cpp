@@ -140,7 +140,10 @@ double budgeted_step(const Shape& shape, const ReconstructionOptions& options, d
 void measure_surface_to_envelope(const services::Envelope& envelope, const std::vector<Vec3>& surface,
                                  ReconstructionResult& result, const services::CancelCheck& cancel) {
   std::vector<double> phi;
-  const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi, cancel);
+  // When the budget enlarged the step, the inside distances that the samples only bound are
+  // tightened on the grid of the step asked for (docs/plugins/evaluation.md).
+  const double refine_step = result.step > result.requested_step ? result.requested_step : 0.0;
+  const std::vector<double> s2e = envelope.boundary_distances(surface, result.envelope, &phi, cancel, refine_step);
   std::size_t inside = 0;
   double sum = 0, mx = 0;
   for (std::size_t i = 0; i < surface.size(); ++i) {

@@ -229,6 +229,32 @@ TEST_CASE("envelope: distance to the boundary inside a union is deeper than insi
   CHECK(d[2] == Approx(std::sqrt(0.75) - 0.2).margin(step));
 }
 
+TEST_CASE("envelope: a finer local grid tightens an inside distance the samples only bound", "[envelope]") {
+  // The two unit balls above; from (0, 0, 0.7) each ball is 1 − √0.74 ≈ 0.140 deep, but the
+  // closest point of either sphere is inside the other: the union's boundary is the intersection
+  // circle, at √0.75 − 0.7 ≈ 0.166.
+  MedialComplex mc;
+  mc.add_vertex({-0.5, 0, 0}, 1.0);
+  mc.add_vertex({0.5, 0, 0}, 1.0);
+  const Envelope envelope(mc);
+  const double coarse = 0.2, fine = 0.05;
+  const services::EnvelopeSamples s = envelope.sample_boundary(coarse);
+  const std::vector<Vec3> points{{0, 0, 0.7}, {3, 0, 0}, {-1.2, 0, 0}};
+  const std::vector<double> bound = envelope.boundary_distances(points, s);
+  const std::vector<double> refined = envelope.boundary_distances(points, s, nullptr, {}, fine);
+  const double exact = std::sqrt(0.75) - 0.7;
+  CHECK(bound[0] >= exact - 1e-9);
+  CHECK(refined[0] >= exact - 1e-9);  // still an upper bound: the points are on ∂E
+  INFO("exact " << exact << ", samples' bound " << bound[0] << ", refined " << refined[0]);
+  CHECK(refined[0] < bound[0]);       // the finer grid's points are nearer the circle,
+  CHECK(refined[0] <= exact + fine);  // within its covering radius
+  CHECK(refined[1] == bound[1]);  // outside: exact either way
+  CHECK(refined[2] == bound[2]);  // certified (0.3 inside the first ball's cap): exact either way
+  CHECK(refined[2] == Approx(0.3).margin(1e-12));
+  // A step not below the samples' asks for nothing.
+  CHECK(envelope.boundary_distances(points, s, nullptr, {}, coarse) == bound);
+}
+
 TEST_CASE("envelope: an empty complex has an empty envelope", "[envelope]") {
   const Envelope envelope{MedialComplex{}};
   CHECK(envelope.empty());

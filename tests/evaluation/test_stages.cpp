@@ -178,6 +178,10 @@ TEST_CASE("reconstruction: the default point budget enlarges a slender shape's s
   const double step = budget.at("envelope_step");
   CHECK(budget.at("envelope_samples") == Approx(1.5 * budget.at("envelope_area") / (step * step)).epsilon(0.1));
   CHECK(budget.at("envelope_samples") <= allowed);
+  // The same metrics on one thread (a deterministic sampling and refinement).
+  Metrics one_thread;
+  tbb::task_arena(1).execute([&] { one_thread = reconstruction(shape, mc, {{"resolution", 40LL}}); });
+  CHECK(one_thread == budget);
   for (const Metrics* m : {&vmas, &budget}) {
     CHECK(m->at("surface_to_envelope_max") == Approx(half).margin(1e-9));
     CHECK(m->at("envelope_to_surface_max") <= radius + 1e-9);

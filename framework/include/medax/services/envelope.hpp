@@ -107,10 +107,14 @@ class Envelope {
   /// boundary is on ∂E (no other primitive covers it), which makes it exact; otherwise the
   /// distance to the nearest of `samples`, an upper bound that exceeds the true distance by at
   /// most the samples' covering radius (≈ step), never below the lower bound −φ(x).
+  /// With `refine_step` below the samples' step, those uncertified points also look at the
+  /// boundary points of a grid of spacing max(refine_step, samples.step / 4) around them (the
+  /// grid sample_boundary would use at that step, only within the current bound), so their
+  /// bound is within that finer grid's covering radius; 0 (or ≥ samples.step): no refinement.
   /// `signed_distances` (optional) receives φ at the points, which the call computes anyway.
   std::vector<double> boundary_distances(const std::vector<Vec3>& points, const EnvelopeSamples& samples,
                                          std::vector<double>* signed_distances = nullptr,
-                                         const CancelCheck& cancel = {}) const;
+                                         const CancelCheck& cancel = {}, double refine_step = 0) const;
 
  private:
   struct Impl;

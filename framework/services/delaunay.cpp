@@ -29,7 +29,12 @@ namespace medax::services {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, K>;
+/// A vertex's input point (its name in the output) and its rank (which orders the cells).
+struct VertexInfo {
+  Index point = 0;
+  Index rank = 0;
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
 // Each cell stores its index in the output (-1 for infinite cells), so neighbours are read
 // directly instead of through a handle -> index map.
 using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int64_t, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
@@ -91,19 +96,18 @@ void for_each_index(std::size_t n, bool parallel, const F& f) {
   else for (std::size_t i = 0; i < n; ++i) f(i);
 }
 
-/// The cells in a deterministic order, whatever the insertion history: by their corners' ranks,
-/// each cell's ranks sorted ascending and compared lexicographically. A counting sort on the
-/// smallest rank, then a sort of each (small) bucket on the other three: no comparison sort of
-/// all cells. `rank` maps a vertex's info (its point index) to its rank, below `ranks`.
+/// The cells in a deterministic order, whatever the insertion history: by their corners' ranks
+/// (all below `ranks`), each cell's ranks sorted ascending and compared lexicographically. A
+/// counting sort on the smallest rank, then a sort of each (small) bucket on the other three:
+/// no comparison sort of all cells.
 template <typename CellHandle>
-std::vector<std::uint32_t> canonical_cell_order(const std::vector<CellHandle>& cells, const std::vector<Index>& rank,
-                                                std::size_t ranks, bool parallel) {
+std::vector<std::uint32_t> canonical_cell_order(const std::vector<CellHandle>& cells, std::size_t ranks, bool parallel) {
   const std::size_t n = cells.size();
   std::vector<std::array<Index, 4>> key(n);
   for_each_index(n, parallel, [&](std::size_t i) {
     const auto& c = cells[i];
-    key[i] = {rank[c->vertex(0)->info()], rank[c->vertex(1)->info()], rank[c->vertex(2)->info()],
-              rank[c->vertex(3)->info()]};
+    key[i] = {c->vertex(0)->info().rank, c->vertex(1)->info().rank, c->vertex(2)->info().rank,
+              c->vertex(3)->info().rank};
     std::sort(key[i].begin(), key[i].end());
   });
   std::vector<std::size_t> start(ranks + 1, 0);
@@ -122,12 +126,12 @@ std::vector<std::uint32_t> canonical_cell_order(const std::vector<CellHandle>& c
 }
 
 template <typename Triangulation>
-DelaunayTetrahedralization extract(Triangulation& dt, const std::vector<Index>& rank, bool parallel, bool canonical) {
+DelaunayTetrahedralization extract(Triangulation& dt, std::size_t ranks, bool parallel, bool canonical) {
   if (dt.dimension() < 3)
     throw std::invalid_argument("the points are coplanar or collinear: a 3D Delaunay tetrahedralization needs "
                                 "points spanning three dimensions");
   std::vector<typename Triangulation::Cell_handle> cells;
-  cells.reserve(dt.number_of_finite_cells());
+  cells.reserve(dt.number_of_cells());  // finite and infinite: O(1), where counting the finite walks them
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
   // Only the infinite cells keep kInfinite: the finite ones are numbered below.
   std::vector<typename Triangulation::Cell_handle> infinite;
@@ -135,7 +139,7 @@ DelaunayTetrahedralization extract(Triangulation& dt, const std::vector<Index>& 
   for (const auto& c : infinite) c->info() = DelaunayTetrahedralization::kInfinite;
   const std::size_t n = cells.size();
 
-  const std::vector<std::uint32_t> order = canonical_cell_order(cells, rank, rank.size(), parallel);
+  const std::vector<std::uint32_t> order = canonical_cell_order(cells, ranks, parallel);
   for_each_index(n, parallel, [&](std::size_t i) { cells[order[i]]->info() = static_cast<std::int64_t>(i); });
 
   DelaunayTetrahedralization out;
@@ -145,7 +149,8 @@ DelaunayTetrahedralization extract(Triangulation& dt, const std::vector<Index>& 
   out.circumradii.resize(n);
   for_each_index(n, parallel, [&](std::size_t i) {
     const auto c = cells[order[i]];
-    const std::array<Index, 4> v{c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    const std::array<Index, 4> v{c->vertex(0)->info().point, c->vertex(1)->info().point, c->vertex(2)->info().point,
+                                 c->vertex(3)->info().point};
     const std::array<int, 4> corner = canonical_corners(v, canonical);
     for (int k = 0; k < 4; ++k) {
       out.cells[i][k] = v[corner[k]];
@@ -203,6 +208,14 @@ std::pair<std::vector<std::size_t>, std::vector<std::size_t>> brio_order(const s
   return {std::move(order), std::move(bounds)};
 }
 
+/// The info of the i-th point of the insertion order. Its rank is that position reversed, so that
+/// nearly every cell is ranked by a corner of the last round, which is sorted along a Hilbert
+/// curve: cells numbered along it are close in memory, for the extraction and for every method
+/// that walks them.
+VertexInfo info_at(const std::vector<Index>& infos, const std::vector<std::size_t>& order, std::size_t i) {
+  return {infos[order[i]], static_cast<Index>(order.size() - 1 - i)};
+}
+
 /// Inserts points[order[begin..end)] with several threads, each holding the locks of its
 /// conflict zone and retrying a point when another thread holds one of them (as CGAL's own
 /// parallel range insertion, which inserts its whole order at once where we go round by round).
@@ -220,7 +233,7 @@ void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& point
           const Triangulation::Vertex_handle v = dt.insert(p, local, &locked);
           dt.unlock_all_elements();
           if (locked) {
-            v->info() = infos[order[i]];
+            v->info() = info_at(infos, order, i);
             local = v;
             done = true;
           }
@@ -235,12 +248,9 @@ void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& point
 /// The Delaunay triangulation of the points, vertex infos set. Small rounds of the insertion
 /// order go in sequentially, large ones concurrently once the triangulation is 3D; the
 /// triangulation is the same either way (CGAL breaks cospherical ties by a symbolic
-/// perturbation, which does not depend on the insertion order). Returns each info's rank for
-/// numbering the cells: the insertion order reversed, so that nearly every cell is ranked by a
-/// corner of the last round, which is sorted along a Hilbert curve (cells numbered along it are
-/// close in memory, for the extraction and for every method that walks them).
-std::vector<Index> triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
-                               std::size_t ranks, bool parallel) {
+/// perturbation, which does not depend on the insertion order).
+void triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const std::vector<Index>& infos,
+                 bool parallel) {
   const auto [order, bounds] = brio_order(points, parallel);
   // On one thread, locking only costs (about 15%): insert everything sequentially.
   parallel = parallel && tbb::this_task_arena::max_concurrency() > 1;
@@ -253,12 +263,9 @@ std::vector<Index> triangulate(Triangulation& dt, const std::vector<K::Point_3>&
     }
     for (std::size_t i = begin; i < end; ++i) {
       hint = dt.insert(points[order[i]], hint);
-      hint->info() = infos[order[i]];
+      hint->info() = info_at(infos, order, i);
     }
   }
-  std::vector<Index> rank(ranks, 0);
-  for (std::size_t i = 0; i < order.size(); ++i) rank[infos[order[i]]] = static_cast<Index>(order.size() - 1 - i);
-  return rank;
 }
 
 CGAL::Bbox_3 bounding_box(const std::vector<K::Point_3>& points) {
@@ -286,18 +293,17 @@ DelaunayTetrahedralization tetrahedralize(const std::vector<Vec3>& points, const
 
   DelaunayTetrahedralization out;
   if (input.size() < kConcurrentFrom) {
-    std::vector<std::pair<K::Point_3, Index>> with_info(input.size());
-    for (std::size_t v = 0; v < input.size(); ++v) with_info[v] = {input[v], vertex_point[v]};
+    // Cells numbered by their corners' point indices.
+    std::vector<std::pair<K::Point_3, VertexInfo>> with_info(input.size());
+    for (std::size_t v = 0; v < input.size(); ++v) with_info[v] = {input[v], {vertex_point[v], vertex_point[v]}};
     SequentialTriangulation dt(with_info.begin(), with_info.end());  // sorted along a Hilbert curve first
-    std::vector<Index> by_index(points.size());  // cells numbered by their corners' point indices
-    std::iota(by_index.begin(), by_index.end(), Index{0});
-    out = extract(dt, by_index, options.parallel, false);
+    out = extract(dt, points.size(), options.parallel, false);
   } else {
     // The lock grid is only used when a round is inserted concurrently.
     LockGrid locks(bounding_box(input), kLockGridCells);
     Triangulation dt(K(), options.parallel ? &locks : nullptr);
-    const std::vector<Index> rank = triangulate(dt, input, vertex_point, points.size(), options.parallel);
-    out = extract(dt, rank, options.parallel, true);
+    triangulate(dt, input, vertex_point, options.parallel);
+    out = extract(dt, input.size(), options.parallel, true);
   }
   out.vertex_point = std::move(vertex_point);
   out.point_vertex = std::move(point_vertex);

@@ -3,7 +3,6 @@
 #include <medax/services/closest_point.hpp>
 #include <medax/services/kdtree.hpp>
 #include <medax/services/sampling.hpp>
-#include <medax/services/shrinking_ball.hpp>
 
 #include <tbb/parallel_for.h>
 
@@ -202,41 +201,45 @@ void VmasInput::finish_setup() {
   });
 }
 
+// The shrinking ball (Ma et al. 2012): the ball tangent at p (inward along −n) shrinks to the
+// ball through p and the contact q closest to its centre, r = |p − q|² / 2n·(p − q), until no
+// contact is closer than r. Contacts are the input's points (k-d tree) or the closest points on
+// the faces (AABB tree: the CGAL port, with its stops: q within 1e-3·scale of p, the same face
+// twice, a ball that would shrink below sb_min_radius). Both stop when p and q are seen from the
+// centre within sb_angle_deg (denoising; masbcpp and the CGoGN code also ask |q − p| < r, which
+// any angle below 60° implies: |q − p| = 2r·sin(θ/2)).
 Sphere VmasInput::shrinking_ball(const Vec3& p, const Vec3& n) const {
-  if (options.sb_contacts == BallContacts::Faces && aabb_) return shrink_on_faces(p, n);
-  services::ShrinkingBallOptions o;
-  o.initial_radius = options.sb_initial_radius * diagonal;
-  o.max_iterations = options.sb_max_iterations;
-  o.tolerance = options.sb_tolerance * scale;
-  o.denoise_angle_deg = options.sb_angle_deg;
-  const services::MedialBall b = services::shrinking_ball(*kd_, p, n, o);
-  return {b.centre, b.radius};
-}
-
-// The ball touches p and the closest point q of the faces to its centre; it shrinks to the ball
-// through p and q tangent at p (r = |p − q|² / 2n·(p − q)), as in the vertex version, and stops
-// as the CGAL port's does: converged (q at distance r), q within 1e-3·scale of p (q is p's own
-// face), the same closest face twice, a ball that would shrink below sb_min_radius, or the
-// denoising angle.
-Sphere VmasInput::shrink_on_faces(const Vec3& p, const Vec3& n) const {
+  const bool on_faces = options.sb_contacts == BallContacts::Faces && aabb_;
   const double tolerance = options.sb_tolerance * scale;
   const double min_cos = std::cos(options.sb_angle_deg * M_PI / 180.0);
   double r = options.sb_initial_radius * diagonal;
   Vec3 c = p - r * n;
+  Vec3 q_prev = p - 2 * r * n;
   Index last_face = 0;
   for (int j = 0; j <= options.sb_max_iterations; ++j) {
-    const services::ClosestPoint cp = aabb_->closest(c);
-    const Vec3& q = cp.point;
-    if (cp.distance >= r - tolerance || (q - p).norm() <= 1e-3 * scale || (j > 0 && cp.face == last_face)) break;
+    Vec3 q;
+    if (on_faces) {
+      const services::ClosestPoint cp = aabb_->closest(c);
+      q = cp.point;
+      if (cp.distance >= r - tolerance || (q - p).norm() <= 1e-3 * scale || (j > 0 && cp.face == last_face)) break;
+      last_face = cp.face;
+    } else {
+      const auto [qi, d] = kd_->nearest(c);
+      q = points[qi];
+      if (std::abs(d - r) <= tolerance || (q - q_prev).norm() < tolerance) break;
+    }
     const double den = n.dot(p - q);
     if (den <= 0) break;
     const double r_new = (p - q).squaredNorm() / (2 * den);
-    if (r_new < options.sb_min_radius * scale) break;
+    if (on_faces && r_new < options.sb_min_radius * scale) break;
     const Vec3 c_new = p - r_new * n;
-    if (j > 0 && (p - c_new).normalized().dot((q - c_new).normalized()) > min_cos) break;
+    if (j > 0) {
+      const Vec3 a = (p - c_new).normalized(), b = (q - c_new).normalized();
+      if (a.dot(b) > min_cos) break;  // p and q at too small an angle: a noise bump
+    }
     c = c_new;
     r = r_new;
-    last_face = cp.face;
+    q_prev = q;
   }
   return {c, r};
 }

@@ -82,8 +82,6 @@ class VmasInput {
  private:
   VmasInput();
   void finish_setup();
-  /// The CGAL port's shrinking ball: second contacts on the faces (closest points), see input.cpp.
-  Sphere shrink_on_faces(const Vec3& p, const Vec3& n) const;
   std::unique_ptr<services::PointIndex> kd_;
   std::unique_ptr<services::SurfaceDistance> aabb_;
   std::vector<Vec3> face_normals_;

@@ -62,7 +62,7 @@ Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& pa
                    const std::vector<FramedPoint>& points) {
   Closure closure;
   const Borders patch_borders = border_loops(patch), template_borders = border_loops(remaining);
-  if (!template_borders.pinches.empty()) return {{}, {}, "the removed template region pinches"};
+  if (!template_borders.pinches.empty()) return {{}, {}, "the removed template region pinches", {}};
   int count = 0;
   const std::vector<int> component = face_components(remaining, &count);
   const std::vector<int> loop_component = loop_components(template_borders.loops, remaining, component);
@@ -70,7 +70,7 @@ Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& pa
   std::vector<char> keep(count, 0), unpaired(count, 0);
   std::vector<char> paired(template_borders.loops.size(), 0);
   for (std::size_t p = 0; p < pair.size(); ++p) {
-    if (pair[p] < 0) return {{}, {}, fmt::format("patch border {} has no template border to join", p)};
+    if (pair[p] < 0) return {{}, {}, fmt::format("patch border {} has no template border to join", p), {}};
     paired[pair[p]] = 1;
     keep[loop_component[pair[p]]] = 1;
   }
@@ -81,8 +81,9 @@ Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& pa
     if (keep[component[f]]) closure.remaining.push_back(remaining[f]);
   for (std::size_t p = 0; p < pair.size(); ++p) {
     auto band = stitch_band(patch_borders.loops[p], template_borders.loops[pair[p]], points);
-    if (!band) return {{}, {}, fmt::format("no consistent band for patch border {} ({} vertices)", p,
-                                           patch_borders.loops[p].size())};
+    if (!band)
+      return {{}, {}, fmt::format("no consistent band for patch border {} ({} vertices)", p, patch_borders.loops[p].size()),
+              patch_borders.loops[p]};
     closure.band.insert(closure.band.end(), band->begin(), band->end());
   }
   return closure;

@@ -3,6 +3,7 @@
 // refinement's point list (template vertices first, then patch vertices). A selected triangle is
 // kept when it faces away from its corners' bases (in space and on ∂P^ρ0); triangles around a
 // vertex where the patch border touches itself are dropped until the border is a set of loops.
+// Small holes (a vertex the selection missed) are filled with S's triangles there.
 #include "primitive.hpp"
 #include "refine_geometry.hpp"
 #include "refinement.hpp"
@@ -27,12 +28,15 @@ struct Patch {
   std::vector<Index> input_face;  ///< the S triangle of each face
 };
 
-/// The patch of the selected S triangles `selected`; adds its vertices to `points`.
+/// The patch of the selected S triangles `selected`, its holes of at most `hole_limit` S
+/// triangles filled; adds its vertices to `points`.
 Patch build_patch(const Primitive& primitive, const TargetMesh& target, const std::vector<Index>& selected,
-                  PointSet& points);
+                  std::size_t hole_limit, PointSet& points);
 
 /// The patch without its border ring (the faces touching a border vertex): a retry when the
 /// band cannot be closed, e.g. because the patch's hole is narrower than the template spacing.
 Patch shrink_patch(const Patch& patch);
+/// The patch without the faces touching `loop` (one border that could not be joined).
+Patch shrink_patch_at(const Patch& patch, std::vector<Index> loop);
 
 }  // namespace medax::msd::refine

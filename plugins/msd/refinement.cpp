@@ -5,6 +5,7 @@
 #include "refine_imprint.hpp"
 #include "refine_patch.hpp"
 #include "refine_selection.hpp"
+#include "refine_snap.hpp"
 #include "refine_topology.hpp"
 
 #include <fmt/format.h>
@@ -77,7 +78,7 @@ std::string defect(const Primitive& primitive, const PointSet& points, const std
     return "the joined mesh is not a topological sphere";
   for (std::size_t f = new_from; f < faces.size(); ++f)
     if (!refine::consistent_triangle(points.points[faces[f][0]], points.points[faces[f][1]], points.points[faces[f][2]]))
-      return "a band triangle folds over along the direction field";
+      return "a band or snapped triangle folds over along the direction field";
   std::vector<Vec3> position, image;
   for (const FramedPoint& p : points.points) {
     position.push_back(p.position);
@@ -92,10 +93,11 @@ std::string defect(const Primitive& primitive, const PointSet& points, const std
   return {};
 }
 
-/// Joins one patch to the template (steps 1b–4); the reason on failure, else empty with the
-/// mesh in `result`.
+/// Joins one patch to the template (steps 1b–4) on a copy of the points (the snap moves some);
+/// the reason on failure, else empty with the mesh in `result`.
 std::string join(const Primitive& primitive, const TargetMesh& target, const RefineOptions& options,
-                 const PointSet& points, const refine::Patch& patch, RefinedPrimitive& result) {
+                 PointSet points, const refine::Patch& patch, RefinedPrimitive& result,
+                 std::vector<Index>& failed_loop) {
   if (patch.faces.empty()) return "no selected S triangle faces away from the element";
   std::vector<Tri> faces;
   std::size_t new_from = 0;
@@ -104,11 +106,19 @@ std::string join(const Primitive& primitive, const TargetMesh& target, const Ref
   } else {
     const std::vector<char> removed = refine::faces_under_patch(
         primitive.shape.faces, primitive.shape.size(), points, patch, options.cleanup_length * target.scale());
-    const refine::Closure closure =
-        refine::close_band(remaining_faces(primitive.shape.faces, removed), patch.faces, points.points);
+    const std::vector<Tri> remaining = remaining_faces(primitive.shape.faces, removed);
+    const std::vector<char> snapped = refine::snap_template_border(
+        primitive, remaining, options.select_reach * target.mean_edge_length(), points);
+    const refine::Closure closure = refine::close_band(remaining, patch.faces, points.points);
+    failed_loop = closure.failed_loop;
     if (!closure.failure.empty()) return closure.failure;
-    faces = closure.remaining;
+    // The template faces at a snapped vertex changed: they are checked like the new ones.
+    const auto at_snapped = [&](const Tri& t) { return snapped[t[0]] || snapped[t[1]] || snapped[t[2]]; };
+    for (const Tri& t : closure.remaining)
+      if (!at_snapped(t)) faces.push_back(t);
     new_from = faces.size();
+    for (const Tri& t : closure.remaining)
+      if (at_snapped(t)) faces.push_back(t);
     faces.insert(faces.end(), patch.faces.begin(), patch.faces.end());
     faces.insert(faces.end(), closure.band.begin(), closure.band.end());
   }
@@ -123,13 +133,15 @@ std::string join(const Primitive& primitive, const TargetMesh& target, const Ref
 RefinedPrimitive refine_fitted(const Primitive& primitive, const TargetMesh& target, const RefineOptions& options) {
   const refine::Selection selection = refine::select_subsurface(primitive, target, options);
   PointSet points = refine::template_points(primitive);
-  refine::Patch patch = refine::build_patch(primitive, target, selection.faces, points);
+  refine::Patch patch = refine::build_patch(primitive, target, selection.faces, options.hole_triangles, points);
   RefinedPrimitive result;
-  std::string why = join(primitive, target, options, points, patch, result);
-  // A patch whose band cannot be closed is retried without its border ring, a few times.
+  std::vector<Index> failed_loop;
+  std::string why = join(primitive, target, options, points, patch, result, failed_loop);
+  // A patch whose band cannot be closed is retried without the ring along the border that
+  // failed (or its whole border ring), a few times.
   for (int shrink = 1; shrink <= options.shrink_retries && !why.empty() && !patch.faces.empty(); ++shrink) {
-    patch = refine::shrink_patch(patch);
-    why = join(primitive, target, options, points, patch, result);
+    patch = failed_loop.empty() ? refine::shrink_patch(patch) : refine::shrink_patch_at(patch, failed_loop);
+    why = join(primitive, target, options, points, patch, result, failed_loop);
   }
   if (!why.empty()) result = unrefined(primitive, "not refined: " + why);
   result.selected_vertices = selection.vertices;

@@ -23,8 +23,12 @@ struct RefineOptions {
   /// a template vertex to the patch (the authors collapse such edges afterwards).
   double cleanup_length = 5e-3;
   /// When the band between the patch and the template cannot be closed consistently, the patch
-  /// loses its border ring and the join is retried, at most this many times.
-  int shrink_retries = 3;
+  /// loses the ring of triangles along the failing border and the join is retried, at most
+  /// this many times.
+  int shrink_retries = 8;
+  /// Holes of the selected patch of at most this many S triangles (vertices the selection missed
+  /// inside the covered region) are filled with S's triangles there when they are consistent.
+  std::size_t hole_triangles = 64;
 };
 // Lengths are in the unit box (multiples of TargetMesh::scale()).
 
@@ -34,11 +38,13 @@ struct RefinedPrimitive {
   SurfaceMesh mesh;                 ///< closed, 2-manifold, outward oriented, working frame
   std::vector<Vec3> base;           ///< b_i ∈ P per mesh vertex
   std::vector<Index> input_vertex;  ///< the S vertex a mesh vertex is, or kNotInput
-  std::vector<Index> input_faces;   ///< the S triangles the mesh contains
+  std::vector<Index> input_faces;   ///< the S triangles the mesh contains, ascending
   bool refined = false;             ///< false: `mesh` is the fitted T_P unchanged, `note` says why
   std::string note;
   std::vector<Index> selected_vertices;  ///< the S vertices step 1 selected, ascending
-  std::vector<Index> selected_faces;     ///< the S triangles step 1 selected, ascending (⊇ input_faces)
+  /// The S triangles step 1 selected, ascending. input_faces is this set less the triangles that
+  /// could not be joined consistently, plus those filling small holes of the selection.
+  std::vector<Index> selected_faces;
   double seconds = 0;                    ///< wall time of this primitive's refinement
 };
 

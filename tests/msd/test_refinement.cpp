@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -116,7 +117,12 @@ void check_refined(const RefinedPrimitive& r, const TargetMesh& target) {
   const std::set<std::array<Index, 3>> present = input_triangles(r);
   REQUIRE(!r.input_faces.empty());
   for (Index f : r.input_faces) REQUIRE(present.count(rotated(target.mesh().faces[f])) == 1);
-  CHECK(std::includes(r.selected_faces.begin(), r.selected_faces.end(), r.input_faces.begin(), r.input_faces.end()));
+  // The patch is the selection, less a few border triangles, plus a few filling small holes.
+  std::vector<Index> taken;
+  std::set_intersection(r.selected_faces.begin(), r.selected_faces.end(), r.input_faces.begin(), r.input_faces.end(),
+                        std::back_inserter(taken));
+  CHECK(taken.size() >= 0.8 * static_cast<double>(r.selected_faces.size()));
+  CHECK(r.input_faces.size() - taken.size() <= 0.1 * static_cast<double>(r.selected_faces.size()));
 }
 
 /// One primitive covering all of S comes back as S: the same vertices and triangles.

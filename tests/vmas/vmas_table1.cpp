@@ -78,7 +78,8 @@ void print_maximality(const SurfaceMesh& mesh, const MedialComplex& mc) {
 
 double hausdorff_percent(const Shape& shape, const MedialComplex& mc) {
 #ifdef MEDAX_VMAS_HAVE_EVALUATION
-  evaluation::ReconstructionOptions o;  // VMAS protocol: vertices + envelope grid of min side / 150
+  evaluation::ReconstructionOptions o;  // VMAS protocol: vertices + envelope grid of min side / 150,
+  o.max_envelope_samples = 0;           // without the default budget of envelope points
   std::mt19937_64 rng(1);
   const auto r = evaluation::measure_reconstruction(shape, mc, o, rng);
   std::fprintf(stderr, "  surface->envelope %.3f%%, envelope->surface %.3f%% (%zu envelope points)\n",

@@ -1,12 +1,13 @@
 // The Q-MAT collapse loop (notes §1.4–1.6, §2.6): optimal sphere per edge, priority (E + k)·γ²,
 // a lazy min-heap, merges, the topology checks and the saved vertices.
 #include "collapse.hpp"
+#include "collapse_queue.hpp"
+#include "flip_test.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <queue>
 
 namespace medax::qmat {
 
@@ -14,21 +15,8 @@ namespace {
 
 constexpr double kSingular = 1e-12;  // |det A| at or below this is singular (authors' code)
 constexpr double kFlipPenalty = 1e9;  // added to E when every candidate flips a face
-constexpr double kSliver = 1e-6;      // sine of a face's angle below which it has no normal
 
-/// One queued collapse; stale when an endpoint has changed since (stamps differ).
-struct Entry {
-  double cost;
-  Index lo, hi;
-  std::uint32_t stamp_lo, stamp_hi;
-  Vec4 sphere;
-  /// Orders the min-heap by cost, ties by the edge's indices (deterministic).
-  bool operator>(const Entry& o) const {
-    if (cost != o.cost) return cost > o.cost;
-    if (lo != o.lo) return lo > o.lo;
-    return hi > o.hi;
-  }
-};
+using Entry = QueuedCollapse;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -42,7 +30,11 @@ class Simplifier {
         mesh_(medial, unit_),
         saved_(medial.num_vertices(), 0),
         stamps_(medial.num_vertices(), 0),
-        generators_(medial.generators) {
+        generators_(medial.generators),
+        flip_test_(mesh_),
+        queue_([this](Index lo, Index hi, std::uint32_t stamp_lo, std::uint32_t stamp_hi) {
+          return stale(lo, hi, stamp_lo, stamp_hi);
+        }) {
     InitialQuadrics q = initial_quadrics(mesh_, options_);
     slab_ = std::move(q.slab);
     add_ = std::move(q.add);
@@ -58,10 +50,12 @@ class Simplifier {
   MedialComplex output(const MedialComplex& input) const;
 
  private:
-  std::optional<Entry> evaluate(Index i, Index j) const;
-  Vec4 optimal_sphere(Index i, Index j, double& error) const;
-  Vec4 cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error) const;
-  bool flips(Index i, Index j, const Vec3& centre) const;
+  bool stale(Index lo, Index hi, std::uint32_t stamp_lo, std::uint32_t stamp_hi) const {
+    return !mesh_.alive(lo) || !mesh_.alive(hi) || stamps_[lo] != stamp_lo || stamps_[hi] != stamp_hi;
+  }
+  std::optional<Entry> evaluate(Index i, Index j);
+  Vec4 optimal_sphere(Index i, Index j, double& error);
+  Vec4 cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error);
   bool contractible(Index i, Index j) const;
   bool guard_refuses(Index i, Index j) const;
   bool link_condition(Index i, Index j) const;
@@ -78,37 +72,13 @@ class Simplifier {
   std::vector<std::vector<Index>> generators_;
   bool any_saved_ = false;
   std::size_t invalid_faces_ = 0, dropped_ = 0;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+  FlipTest flip_test_;
+  CollapseQueue queue_;
 };
-
-/// Whether moving i and j to `centre` turns the normal of a face around them (one that does not
-/// vanish) by more than 90°.
-bool Simplifier::flips(Index i, Index j, const Vec3& centre) const {
-  bool flipped = false;
-  for (Index end : {i, j}) {
-    if (centre_of(mesh_.spheres[end]) == centre) continue;  // this end does not move
-    const Index other = end == i ? j : i;
-    mesh_.for_each_face(end, [&](Index f) {
-      const Tri& t = mesh_.face(f);
-      if (flipped || t[0] == other || t[1] == other || t[2] == other) return;  // done, or vanishes
-      const int at = t[0] == end ? 0 : (t[1] == end ? 1 : 2);
-      const Vec3& a = centre_of(mesh_.spheres[t[(at + 1) % 3]]);
-      const Vec3& b = centre_of(mesh_.spheres[t[(at + 2) % 3]]);
-      const Vec3 p = centre_of(mesh_.spheres[end]);
-      const Vec3 e1 = a - p, e2 = b - p;
-      const Vec3 n0 = e1.cross(e2);
-      // A sliver (the Voronoi axis has many, from nearly coincident vertices) has no normal to flip.
-      if (!(n0.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) return;
-      flipped = n0.dot((a - centre).cross(b - centre)) < 0;
-    });
-    if (flipped) return true;
-  }
-  return false;
-}
 
 /// The cheapest of mᵢ, mⱼ and their mean under q, skipping flipping ones when asked; when every
 /// candidate flips, the cheapest plus the flip penalty.
-Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error) const {
+Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error) {
   const Vec4 candidates[3] = {mesh_.spheres[i], mesh_.spheres[j], 0.5 * (mesh_.spheres[i] + mesh_.spheres[j])};
   std::optional<Vec4> best;
   std::optional<Vec4> best_any;
@@ -116,7 +86,7 @@ Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_fli
   for (const Vec4& m : candidates) {
     const double e = q(m);
     if (!best_any || e < best_any_error) best_any = m, best_any_error = e;
-    if (avoid_flips && flips(i, j, centre_of(m))) continue;
+    if (avoid_flips && flip_test_.flips(i, j, centre_of(m))) continue;
     if (!best || e < best_error) best = m, best_error = e;
   }
   if (best) {
@@ -128,19 +98,19 @@ Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_fli
 }
 
 /// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean.
-Vec4 Simplifier::optimal_sphere(Index i, Index j, double& error) const {
+Vec4 Simplifier::optimal_sphere(Index i, Index j, double& error) {
   const SlabQuadric qe = slab_[i] + slab_[j];
   const bool faceless = mesh_.face_count(i, j) == 0;
   if (!faceless && !(std::abs(qe.A.determinant()) > kSingular)) return cheapest(i, j, qe, options_.flip_test, error);
   const SlabQuadric qa = qe + add_[i] + add_[j];
   const std::optional<Vec4> m = qa.minimiser(kSingular);
   const Vec4 sphere = m && m->w() > 0 ? *m : Vec4(0.5 * (mesh_.spheres[i] + mesh_.spheres[j]));
-  if (options_.flip_test && flips(i, j, centre_of(sphere))) return cheapest(i, j, qa, true, error);
+  if (options_.flip_test && flip_test_.flips(i, j, centre_of(sphere))) return cheapest(i, j, qa, true, error);
   error = qa(sphere);
   return sphere;
 }
 
-std::optional<Entry> Simplifier::evaluate(Index i, Index j) const {
+std::optional<Entry> Simplifier::evaluate(Index i, Index j) {
   if (saved_[i] && saved_[j]) return std::nullopt;  // two saved spheres never merge
   Entry e{0, std::min(i, j), std::max(i, j), 0, 0, Vec4::Zero()};
   e.stamp_lo = stamps_[e.lo];
@@ -192,12 +162,13 @@ void Simplifier::queue_all_edges() {
   for (Index i = 0; i < mesh_.size(); ++i)
     for (Index j : mesh_.neighbours(i))
       if (i < j)
-        if (auto e = evaluate(i, j)) heap_.push(*e);
+        if (auto e = evaluate(i, j)) queue_.push_unordered(*e);
+  queue_.heapify();
 }
 
 void Simplifier::queue_edges_of(Index v) {
   for (Index n : mesh_.neighbours(v))
-    if (auto e = evaluate(v, n)) heap_.push(*e);
+    if (auto e = evaluate(v, n)) queue_.push(*e);
 }
 
 void Simplifier::collapse(const Entry& e) {
@@ -205,6 +176,7 @@ void Simplifier::collapse(const Entry& e) {
   const Index gone = keep == e.lo ? e.hi : e.lo;
   mesh_.merge(keep, gone);
   mesh_.spheres[keep] = e.sphere;
+  flip_test_.forget();
   slab_[keep] += slab_[gone];
   add_[keep] += add_[gone];
   saved_[keep] = saved_[keep] || saved_[gone];
@@ -221,11 +193,9 @@ void Simplifier::run(std::size_t target, QmatReport& report, const std::function
   const std::size_t todo = start > goal ? start - goal : 0;
   report.stopped_by = "queue";
   while (mesh_.live_vertices() > goal) {
-    if (heap_.empty()) break;
-    const Entry e = heap_.top();
-    heap_.pop();
-    if (!mesh_.alive(e.lo) || !mesh_.alive(e.hi) || stamps_[e.lo] != e.stamp_lo || stamps_[e.hi] != e.stamp_hi)
-      continue;
+    if (queue_.empty()) break;
+    const Entry e = queue_.pop();
+    if (stale(e.lo, e.hi, e.stamp_lo, e.stamp_hi)) continue;
     if (options_.max_cost > 0 && e.cost > options_.max_cost) {
       report.stopped_by = "max_cost";
       break;

@@ -1,6 +1,7 @@
 #include "collapse_mesh.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 namespace medax::qmat {
 
@@ -10,6 +11,8 @@ Tri sorted(Tri t) {
   std::sort(t.begin(), t.end());
   return t;
 }
+
+bool holds(const Tri& t, Index v) { return t[0] == v || t[1] == v || t[2] == v; }
 
 void insert_sorted(std::vector<Index>& list, Index v) {
   auto it = std::lower_bound(list.begin(), list.end(), v);
@@ -21,13 +24,16 @@ void erase_sorted(std::vector<Index>& list, Index v) {
   if (it != list.end() && *it == v) list.erase(it);
 }
 
-}  // namespace
-
-std::size_t CollapseMesh::TriHash::operator()(const Tri& t) const {
-  std::size_t h = t[0];
-  h = h * 0x9E3779B97F4A7C15ull + t[1];
-  return h * 0x9E3779B97F4A7C15ull + t[2];
+/// Adds room in lists[v] for `per_corner` (or, when 0, one) entries per element holding v.
+template <typename Element>
+void reserve_per_vertex(std::vector<std::vector<Index>>& lists, const std::vector<Element>& elements, int per_corner) {
+  std::vector<std::size_t> count(lists.size(), 0);
+  for (const Element& e : elements)
+    for (Index v : e) count[v] += per_corner > 0 ? per_corner : 1;
+  for (std::size_t v = 0; v < lists.size(); ++v) lists[v].reserve(lists[v].capacity() + count[v]);
 }
+
+}  // namespace
 
 CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
     : alive_(medial.num_vertices(), 1), neighbours_(medial.num_vertices()), vertex_faces_(medial.num_vertices()),
@@ -35,28 +41,41 @@ CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
   spheres.reserve(medial.num_vertices());
   for (std::size_t v = 0; v < medial.num_vertices(); ++v)
     spheres.push_back(sphere4(medial.centres[v] / unit_length, medial.radii[v] / unit_length));
-  for (const Segment& e : medial.edges) add_edge(e[0], e[1]);
-  face_index_.reserve(2 * medial.faces.size());
+  add_faces(medial);
+  add_adjacency(medial);
+}
+
+/// One slot per input face, in input order, except degenerate faces and repeats of an earlier one.
+void CollapseMesh::add_faces(const MedialComplex& medial) {
+  reserve_per_vertex(vertex_faces_, medial.faces, 0);
   for (Index input = 0; input < medial.faces.size(); ++input) {
     const Tri& t = medial.faces[input];
     const Tri key = sorted(t);
-    if (key[0] == key[1] || key[1] == key[2] || face_index_.count(key)) continue;  // degenerate or repeated
+    if (key[0] == key[1] || key[1] == key[2] || has_face(t[0], t[1], t[2])) continue;
     const Index f = static_cast<Index>(faces_.size());
     faces_.push_back(t);
     source_face_.push_back(input);
     face_alive_.push_back(1);
-    face_index_.emplace(key, f);
-    for (int k = 0; k < 3; ++k) {
-      vertex_faces_[t[k]].push_back(f);
-      add_edge(t[k], t[(k + 1) % 3]);
-    }
+    for (Index v : t) vertex_faces_[v].push_back(f);
   }
 }
 
-void CollapseMesh::add_edge(Index a, Index b) {
-  if (a == b) return;
-  insert_sorted(neighbours_[a], b);
-  insert_sorted(neighbours_[b], a);
+/// Neighbours: the complex's edges and every side of a face slot, sorted and without repeats.
+void CollapseMesh::add_adjacency(const MedialComplex& medial) {
+  reserve_per_vertex(neighbours_, medial.edges, 0);
+  reserve_per_vertex(neighbours_, faces_, 2);  // two face sides meet at each corner
+  auto add = [&](Index a, Index b) {
+    if (a == b) return;
+    neighbours_[a].push_back(b);
+    neighbours_[b].push_back(a);
+  };
+  for (const Segment& e : medial.edges) add(e[0], e[1]);
+  for (const Tri& t : faces_)
+    for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3]);
+  for (std::vector<Index>& list : neighbours_) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
 }
 
 bool CollapseMesh::has_faces(Index v) const {
@@ -65,26 +84,16 @@ bool CollapseMesh::has_faces(Index v) const {
   return false;
 }
 
-std::size_t CollapseMesh::face_count(Index i, Index j) const {
+std::size_t CollapseMesh::face_count(Index i, Index j, Index* some) const {
   const Index scan = vertex_faces_[i].size() <= vertex_faces_[j].size() ? i : j;
   const Index other = scan == i ? j : i;
   std::size_t count = 0;
-  for (Index f : vertex_faces_[scan]) {
-    const Tri& t = faces_[f];
-    count += face_alive_[f] && (t[0] == other || t[1] == other || t[2] == other);
-  }
+  for (Index f : vertex_faces_[scan])
+    if (face_alive_[f] && holds(faces_[f], other)) {
+      if (some) *some = f;
+      ++count;
+    }
   return count;
-}
-
-std::vector<Index> CollapseMesh::faces_of_edge(Index i, Index j) const {
-  const Index scan = vertex_faces_[i].size() <= vertex_faces_[j].size() ? i : j;
-  const Index other = scan == i ? j : i;
-  std::vector<Index> out;
-  for (Index f : vertex_faces_[scan]) {
-    const Tri& t = faces_[f];
-    if (face_alive_[f] && (t[0] == other || t[1] == other || t[2] == other)) out.push_back(f);
-  }
-  return out;
 }
 
 std::vector<Index> CollapseMesh::common_neighbours(Index i, Index j) const {
@@ -94,24 +103,25 @@ std::vector<Index> CollapseMesh::common_neighbours(Index i, Index j) const {
   return out;
 }
 
-bool CollapseMesh::has_face(Index a, Index b, Index c) const { return face_index_.count(sorted({a, b, c})) != 0; }
-
-void CollapseMesh::kill_face(Index f) {
-  face_alive_[f] = 0;
-  face_index_.erase(sorted(faces_[f]));
+bool CollapseMesh::has_face(Index a, Index b, Index c) const {
+  Index scan = a;
+  for (Index v : {b, c})
+    if (vertex_faces_[v].size() < vertex_faces_[scan].size()) scan = v;
+  const Tri key = sorted({a, b, c});
+  for (Index f : vertex_faces_[scan])
+    if (face_alive_[f] && sorted(faces_[f]) == key) return true;
+  return false;
 }
 
 void CollapseMesh::move_face(Index f, Index from, Index to) {
   Tri t = faces_[f];
   for (Index& v : t)
     if (v == from) v = to;
-  face_index_.erase(sorted(faces_[f]));
-  if (face_index_.count(sorted(t))) {  // the same triangle already exists at `to`
+  if (has_face(t[0], t[1], t[2])) {  // the same triangle already exists at `to`
     face_alive_[f] = 0;
     return;
   }
   faces_[f] = t;
-  face_index_.emplace(sorted(t), f);
   vertex_faces_[to].push_back(f);
 }
 
@@ -129,8 +139,7 @@ void CollapseMesh::move_neighbours(Index keep, Index gone) {
 void CollapseMesh::merge(Index keep, Index gone) {
   for (Index f : vertex_faces_[gone]) {
     if (!face_alive_[f]) continue;
-    const Tri& t = faces_[f];
-    if (t[0] == keep || t[1] == keep || t[2] == keep) kill_face(f);
+    if (holds(faces_[f], keep)) face_alive_[f] = 0;
     else move_face(f, gone, keep);
   }
   vertex_faces_[gone].clear();

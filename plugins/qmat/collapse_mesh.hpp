@@ -6,7 +6,6 @@
 
 #include <medax/medial_complex.hpp>
 
-#include <unordered_map>
 #include <vector>
 
 namespace medax::qmat {
@@ -30,15 +29,15 @@ class CollapseMesh {
       if (face_alive_[f]) visit(f);
   }
   bool has_faces(Index v) const;
-  /// Live faces holding both i and j.
-  std::vector<Index> faces_of_edge(Index i, Index j) const;
-  std::size_t face_count(Index i, Index j) const;
+  /// The number of live faces holding both i and j, and one of them in `some` when there is one.
+  std::size_t face_count(Index i, Index j, Index* some = nullptr) const;
   /// Vertices adjacent to both i and j.
   std::vector<Index> common_neighbours(Index i, Index j) const;
   const Tri& face(Index f) const { return faces_[f]; }
   std::size_t face_slots() const { return faces_.size(); }
   /// The input face a face slot came from (degenerate and repeated input faces get no slot).
   Index source_face(Index f) const { return source_face_[f]; }
+  /// Whether a live face has the corners a, b, c (in any order).
   bool has_face(Index a, Index b, Index c) const;
 
   /// Merges `gone` into `keep` (which must be adjacent); the caller sets keep's sphere.
@@ -47,19 +46,15 @@ class CollapseMesh {
   std::vector<Vec4> spheres;  ///< (centre, radius) / unit_length
 
  private:
-  void add_edge(Index a, Index b);
-  void kill_face(Index f);
+  void add_faces(const MedialComplex& medial);
+  void add_adjacency(const MedialComplex& medial);
   void move_face(Index f, Index from, Index to);
   void move_neighbours(Index keep, Index gone);
 
-  struct TriHash {
-    std::size_t operator()(const Tri& t) const;
-  };
   std::vector<char> alive_, face_alive_;
   std::vector<std::vector<Index>> neighbours_, vertex_faces_;
   std::vector<Index> source_face_;
   std::vector<Tri> faces_;  // original orientation, with merged vertices renamed
-  std::unordered_map<Tri, Index, TriHash> face_index_;  // sorted triple -> face
   std::size_t live_ = 0;
 };
 

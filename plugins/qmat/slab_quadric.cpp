@@ -1,6 +1,7 @@
 #include "slab_quadric.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace medax::qmat {
 
@@ -14,9 +15,41 @@ SlabQuadric SlabQuadric::tangent_plane(const Vec3& n, const Vec4& at, double wei
   return q;
 }
 
+Vec4 solve_partial_pivot(Mat4 lu, Vec4 x) {
+  // Eigen's unblocked partial-pivot LU of a fixed 4×4: pivot = first largest |entry| of the
+  // column, row swap, column scaled by the pivot, rank-one update of the trailing block.
+  int pivot[3];
+  for (int k = 0; k < 3; ++k) {
+    int p = k;
+    for (int r = k + 1; r < 4; ++r)
+      if (std::abs(lu(r, k)) > std::abs(lu(p, k))) p = r;
+    pivot[k] = p;
+    if (std::abs(lu(p, k)) != 0) {
+      if (p != k) lu.row(k).swap(lu.row(p));
+      for (int r = k + 1; r < 4; ++r) lu(r, k) /= lu(k, k);
+    }
+    for (int c = k + 1; c < 4; ++c)
+      for (int r = k + 1; r < 4; ++r) lu(r, c) -= lu(k, c) * lu(r, k);
+  }
+  for (int k = 0; k < 3; ++k) std::swap(x[k], x[pivot[k]]);
+  // Eigen's unrolled triangular solves: unit lower, then upper; the dot products of two or
+  // three terms are summed as a₀ + a₁ and a₀ + (a₁ + a₂).
+  x[1] -= lu(1, 0) * x[0];
+  x[2] -= lu(2, 0) * x[0] + lu(2, 1) * x[1];
+  x[3] -= lu(3, 0) * x[0] + (lu(3, 1) * x[1] + lu(3, 2) * x[2]);
+  x[3] /= lu(3, 3);
+  x[2] -= lu(2, 3) * x[3];
+  x[2] /= lu(2, 2);
+  x[1] -= lu(1, 2) * x[2] + lu(1, 3) * x[3];
+  x[1] /= lu(1, 1);
+  x[0] -= lu(0, 1) * x[1] + (lu(0, 2) * x[2] + lu(0, 3) * x[3]);
+  x[0] /= lu(0, 0);
+  return x;
+}
+
 std::optional<Vec4> SlabQuadric::minimiser(double singular) const {
   if (!(std::abs(A.determinant()) > singular)) return std::nullopt;
-  const Vec4 m = A.partialPivLu().solve(b);
+  const Vec4 m = solve_partial_pivot(A, b);
   if (!m.allFinite()) return std::nullopt;
   return m;
 }

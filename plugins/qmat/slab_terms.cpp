@@ -92,9 +92,10 @@ InitialQuadrics initial_quadrics(const CollapseMesh& mesh, const QmatOptions& op
   for (Index i = 0; i < mesh.size(); ++i)
     for (Index j : mesh.neighbours(i)) {
       if (j < i) continue;
-      const std::vector<Index> faces = mesh.faces_of_edge(i, j);
-      if (faces.size() == 1) add_boundary_terms(mesh, i, j, faces[0], options, q);
-      else if (faces.empty()) add_cone_terms(mesh, i, j, options, q);
+      Index face = 0;
+      const std::size_t faces = mesh.face_count(i, j, &face);
+      if (faces == 1) add_boundary_terms(mesh, i, j, face, options, q);
+      else if (faces == 0) add_cone_terms(mesh, i, j, options, q);
     }
   return q;
 }

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
 #include <random>
 
 using namespace medax;
@@ -83,4 +84,27 @@ TEST_CASE("a flat equal-radius sheet gives a singular edge quadric", "[qmat][qua
   // Every plane is z = ±(… ) with n = ±e_z: A_e has rank ≤ 2, det 0.
   CHECK(std::abs((q.slab[4] + q.slab[5]).A.determinant()) <= 1e-12);
   CHECK(!(q.slab[4] + q.slab[5]).minimiser(1e-12));
+}
+
+TEST_CASE("the 4x4 partial-pivot solve equals Eigen's PartialPivLU bit for bit", "[qmat][quadric]") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto check = [](const Mat4& A, const Vec4& b) {
+    const Vec4 eigen = A.partialPivLu().solve(b), ours = solve_partial_pivot(A, b);
+    for (int k = 0; k < 4; ++k) CHECK(std::memcmp(&eigen[k], &ours[k], sizeof(double)) == 0);
+  };
+  for (int n = 0; n < 2000; ++n) {
+    Mat4 A;
+    for (int k = 0; k < 16; ++k) A(k / 4, k % 4) = u(rng);
+    const Vec4 b(u(rng), u(rng), u(rng), u(rng));
+    check(A, b);
+    // The collapse's matrices: sums of tangent-plane quadrics, symmetric and often nearly singular.
+    SlabQuadric q;
+    for (int p = 0; p < 2 + n % 5; ++p)
+      q += SlabQuadric::tangent_plane(Vec3(u(rng), u(rng), u(rng)).normalized(), Vec4(u(rng), u(rng), u(rng), 0.5));
+    check(q.A, q.b);
+    // Zero leading entries force row swaps.
+    A.col(0).head<2>().setZero();
+    check(A, b);
+  }
 }

@@ -1,0 +1,84 @@
+#include "collapse_queue.hpp"
+
+#include <algorithm>
+
+namespace medax::qmat {
+
+namespace {
+constexpr std::size_t kArity = 4;  // four 32-byte children span two cache lines
+}
+
+std::uint32_t CollapseQueue::store(const Vec4& sphere) {
+  if (free_slots_.empty()) {
+    spheres_.push_back(sphere);
+    return static_cast<std::uint32_t>(spheres_.size() - 1);
+  }
+  const std::uint32_t slot = free_slots_.back();
+  free_slots_.pop_back();
+  spheres_[slot] = sphere;
+  return slot;
+}
+
+void CollapseQueue::push_unordered(const QueuedCollapse& c) {
+  heap_.push_back({c.cost, c.lo, c.hi, c.stamp_lo, c.stamp_hi, store(c.sphere)});
+}
+
+void CollapseQueue::push(const QueuedCollapse& c) {
+  if (heap_.size() >= sweep_above_) sweep_stale();
+  push_unordered(c);
+  sift_up(heap_.size() - 1);
+}
+
+QueuedCollapse CollapseQueue::pop() {
+  const Key top = heap_.front();
+  heap_.front() = heap_.back();
+  heap_.pop_back();
+  if (!heap_.empty()) sift_down(0);
+  free_slots_.push_back(top.slot);
+  return {top.cost, top.lo, top.hi, top.stamp_lo, top.stamp_hi, spheres_[top.slot]};
+}
+
+void CollapseQueue::sift_up(std::size_t at) {
+  const Key moving = heap_[at];
+  while (at > 0) {
+    const std::size_t parent = (at - 1) / kArity;
+    if (!after(heap_[parent], moving)) break;
+    heap_[at] = heap_[parent];
+    at = parent;
+  }
+  heap_[at] = moving;
+}
+
+void CollapseQueue::sift_down(std::size_t at) {
+  const Key moving = heap_[at];
+  const std::size_t n = heap_.size();
+  for (;;) {
+    const std::size_t first = kArity * at + 1;
+    if (first >= n) break;
+    std::size_t least = first;
+    for (std::size_t c = first + 1; c < std::min(first + kArity, n); ++c)
+      if (after(heap_[least], heap_[c])) least = c;
+    if (!after(moving, heap_[least])) break;
+    heap_[at] = heap_[least];
+    at = least;
+  }
+  heap_[at] = moving;
+}
+
+void CollapseQueue::heapify() {
+  for (std::size_t at = heap_.size() / kArity + 1; at-- > 0;)
+    if (at < heap_.size()) sift_down(at);
+  sweep_above_ = std::max<std::size_t>(2 * heap_.size(), sweep_above_);
+}
+
+void CollapseQueue::sweep_stale() {
+  auto live_end = std::partition(heap_.begin(), heap_.end(), [&](const Key& k) {
+    return !stale_(k.lo, k.hi, k.stamp_lo, k.stamp_hi);
+  });
+  for (auto it = live_end; it != heap_.end(); ++it) free_slots_.push_back(it->slot);
+  heap_.erase(live_end, heap_.end());
+  heapify();
+  sweep_above_ = std::max<std::size_t>(2 * heap_.size(), 4096);
+}
+
+}  // namespace medax::qmat

@@ -1,0 +1,66 @@
+#pragma once
+// The lazy priority queue of Q-MAT's collapse loop. An entry is the collapse of edge (lo, hi)
+// costed when its endpoints had the given stamps; entries whose endpoint changed since are stale
+// and skipped by the caller. For speed (the queue's cache misses were a sixth of the loop), the
+// heap is 4-ary over 32-byte keys, the optimal spheres live in a slot store beside it, the
+// first entries are heapified at once, and stale entries are swept out whenever the heap has
+// doubled since the last sweep. The order is the total order (cost, lo, hi), so the pops of live
+// entries do not depend on any of this.
+#include "slab_quadric.hpp"
+
+#include <medax/geometry.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace medax::qmat {
+
+struct QueuedCollapse {
+  double cost = 0;
+  Index lo = 0, hi = 0;
+  std::uint32_t stamp_lo = 0, stamp_hi = 0;
+  Vec4 sphere = Vec4::Zero();
+};
+
+class CollapseQueue {
+ public:
+  /// `stale(lo, hi, stamp_lo, stamp_hi)` says an entry is out of date (used by the sweeps).
+  using StaleTest = std::function<bool(Index, Index, std::uint32_t, std::uint32_t)>;
+  explicit CollapseQueue(StaleTest stale) : stale_(std::move(stale)) {}
+
+  void push(const QueuedCollapse& c);
+  /// Adds an entry without ordering the heap; call heapify() before the next pop or push.
+  void push_unordered(const QueuedCollapse& c);
+  void heapify();
+  bool empty() const { return heap_.empty(); }
+  std::size_t size() const { return heap_.size(); }
+  /// Removes and returns the least entry by (cost, lo, hi).
+  QueuedCollapse pop();
+
+ private:
+  struct Key {
+    double cost;
+    Index lo, hi;
+    std::uint32_t stamp_lo, stamp_hi;
+    std::uint32_t slot;  ///< index of the sphere in spheres_
+  };
+  /// Heap order: true when a comes after b (a min-heap on cost, ties by the edge's indices).
+  static bool after(const Key& a, const Key& b) {
+    if (a.cost != b.cost) return a.cost > b.cost;
+    if (a.lo != b.lo) return a.lo > b.lo;
+    return a.hi > b.hi;
+  }
+  std::uint32_t store(const Vec4& sphere);
+  void sift_up(std::size_t at);
+  void sift_down(std::size_t at);
+  void sweep_stale();
+
+  StaleTest stale_;
+  std::vector<Key> heap_;
+  std::vector<Vec4> spheres_;
+  std::vector<std::uint32_t> free_slots_;
+  std::size_t sweep_above_ = 4096;
+};
+
+}  // namespace medax::qmat

@@ -182,31 +182,46 @@ struct Uncertified {
 
 /// How far the refinement looks between the lower bound (depth) and the samples' upper bound: on
 /// Voronoi envelopes the nearest boundary point is close to the depth (spot: a quarter of the way
-/// gives the bounds of looking all the way to 0.05%, at a third of the cost).
+/// gives the ε̄¹ of looking all the way, to 6 digits, at half the cost).
 constexpr double kRefineShare = 0.25;
+/// Grid points a refined point may cost at most (a point deep inside a large primitive would
+/// need a large shell); beyond, it keeps the samples' bound.
+constexpr double kMaxShellPoints = 4096;
 
 /// Tightens the upper bounds out[i] of the uncertified points with the boundary points sampled at
 /// `step` (finer than the samples) within depth + kRefineShare·(out[i] − depth) + step of each:
-/// every such point lies on ∂E, so the distance to the nearest stays an upper bound.
+/// every such point lies on ∂E, so the distance to the nearest stays an upper bound. The grid
+/// points closer than depth − step are inside E with all their neighbours (φ is 1-Lipschitz), so
+/// no crossing edge needs them: only a shell is searched.
 void refine_uncertified(const EnvelopeBvh& bvh, const std::vector<Vec3>& points, const Uncertified& open,
                         double step, std::vector<double>& out, const envelope_detail::CancelPoll& poll) {
   std::vector<Vec3> centres;
-  std::vector<double> radii;
+  std::vector<double> inner, outer;
+  std::vector<std::int64_t> seeds;
+  std::vector<std::size_t> refined;  // into open
   for (std::size_t u = 0; u < open.index.size(); ++u) {
+    const double r0 = open.depth[u] - step;
+    const double r1 = open.depth[u] + kRefineShare * (out[open.index[u]] - open.depth[u]) + step;
+    const double volume = 4.0 / 3.0 * M_PI * (r1 * r1 * r1 - std::pow(std::max(0.0, r0), 3));
+    if (volume > kMaxShellPoints * step * step * step) continue;
+    refined.push_back(u);
     centres.push_back(points[open.index[u]]);
-    radii.push_back(open.depth[u] + kRefineShare * (out[open.index[u]] - open.depth[u]) + step);
+    inner.push_back(r0);
+    outer.push_back(r1);
+    seeds.push_back(open.prim[u]);
   }
   std::vector<Vec3> near;
   try {
-    near = envelope_detail::sample_boundary_near(bvh, step, centres, radii, open.prim, poll);
+    near = envelope_detail::sample_boundary_near(bvh, step, centres, inner, outer, seeds, poll);
   } catch (const std::invalid_argument&) {
     return;  // a step too fine for the grid's keys: keep the samples' bounds
   }
   if (near.empty()) return;
   const PointIndex index(near);
-  for (std::size_t u = 0; u < open.index.size(); ++u) {
+  for (std::size_t c = 0; c < refined.size(); ++c) {
+    const std::size_t u = refined[c];
     double& d = out[open.index[u]];
-    d = std::max(open.depth[u], std::min(d, index.nearest(centres[u]).second));
+    d = std::max(open.depth[u], std::min(d, index.nearest(centres[c]).second));
   }
 }
 

@@ -366,16 +366,17 @@ void crossing_points(const EnvelopeBvh& bvh, const Grid& grid, const std::vector
 /// A grid point near a point to refine, and the primitive that starts its search.
 using SeededKey = std::pair<std::uint64_t, std::int64_t>;
 
-/// The grid points within radii[c] of centres[c] (clamped to the grid), sorted, each once, with
-/// the seed of the first centre that reaches them.
-std::vector<SeededKey> keys_near(const Grid& grid, const std::vector<Vec3>& centres, const std::vector<double>& radii,
-                                 const std::vector<std::int64_t>& seeds, const CancelPoll& poll) {
+/// The grid points in the shells inner[c] ≤ |z − centres[c]| ≤ outer[c] (clamped to the grid),
+/// sorted, each once, with the seed of the first centre that reaches them.
+std::vector<SeededKey> keys_near(const Grid& grid, const std::vector<Vec3>& centres, const std::vector<double>& inner,
+                                 const std::vector<double>& outer, const std::vector<std::int64_t>& seeds,
+                                 const CancelPoll& poll) {
   const double last = double(std::uint64_t{1} << grid.levels);
   std::vector<SeededKey> keys;
   for (std::size_t c = 0; c < centres.size(); ++c) {
     poll.at(c);
     const Vec3 g = (grid.rotation.transpose() * centres[c] - grid.origin) / grid.step;  // grid units
-    const double r = radii[c] / grid.step;
+    const double r = outer[c] / grid.step, r0 = std::max(0.0, inner[c] / grid.step);
     Vec3 lo, hi;
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::clamp(std::ceil(g[a] - r), 0.0, last);
@@ -384,7 +385,7 @@ std::vector<SeededKey> keys_near(const Grid& grid, const std::vector<Vec3>& cent
     for (double i = lo[0]; i <= hi[0]; ++i)
       for (double j = lo[1]; j <= hi[1]; ++j)
         for (double k = lo[2]; k <= hi[2]; ++k)
-          if ((Vec3(i, j, k) - g).squaredNorm() <= r * r)
+          if (const double d2 = (Vec3(i, j, k) - g).squaredNorm(); d2 <= r * r && d2 >= r0 * r0)
             keys.push_back({pack(std::uint64_t(i), std::uint64_t(j), std::uint64_t(k)), seeds[c]});
   }
   poll.now();
@@ -397,11 +398,11 @@ std::vector<SeededKey> keys_near(const Grid& grid, const std::vector<Vec3>& cent
 }  // namespace
 
 std::vector<Vec3> sample_boundary_near(const EnvelopeBvh& bvh, double step, const std::vector<Vec3>& centres,
-                                       const std::vector<double>& radii, const std::vector<std::int64_t>& seeds,
-                                       const CancelPoll& poll) {
+                                       const std::vector<double>& inner, const std::vector<double>& outer,
+                                       const std::vector<std::int64_t>& seeds, const CancelPoll& poll) {
   if (bvh.geometry().empty() || centres.empty()) return {};
   const Grid grid(bvh, step);
-  const std::vector<SeededKey> keys = keys_near(grid, centres, radii, seeds, poll);
+  const std::vector<SeededKey> keys = keys_near(grid, centres, inner, outer, seeds, poll);
   std::vector<std::uint64_t> corners(keys.size());
   for (std::size_t c = 0; c < keys.size(); ++c) corners[c] = keys[c].first;
   // Each point searched as the last pass of corner_values does (the sign, and the exact value

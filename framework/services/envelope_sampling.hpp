@@ -33,11 +33,11 @@ EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::
                                 const CancelPoll& poll);
 
 /// Boundary points on the grid of sample_boundary(step), from the grid edges whose ends both lie
-/// within radii[i] of centres[i]: a local, finer sampling (every point exactly on ∂E, the point
-/// sample_boundary gives that edge). seeds[i] (a primitive in BVH order, e.g. the deepest at
-/// centres[i]) starts the searches around centres[i].
+/// in a shell inner[i] ≤ |z − centres[i]| ≤ outer[i]: a local, finer sampling (every point exactly
+/// on ∂E, the point sample_boundary gives that edge). seeds[i] (a primitive in BVH order, e.g.
+/// the deepest at centres[i]) starts the searches around centres[i].
 std::vector<Vec3> sample_boundary_near(const EnvelopeBvh& bvh, double step, const std::vector<Vec3>& centres,
-                                       const std::vector<double>& radii, const std::vector<std::int64_t>& seeds,
-                                       const CancelPoll& poll);
+                                       const std::vector<double>& inner, const std::vector<double>& outer,
+                                       const std::vector<std::int64_t>& seeds, const CancelPoll& poll);
 
 }  // namespace medax::services::envelope_detail

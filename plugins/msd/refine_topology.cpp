@@ -3,36 +3,53 @@
 #include <medax/union_find.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
+#include <tuple>
 #include <utility>
 
 namespace medax::msd::refine {
 namespace {
 
-using Directed = std::map<std::pair<Index, Index>, int>;
+// Halfedges a → b as sorted 64-bit keys: binary searches instead of tree maps (these run for
+// every join attempt of every primitive).
+std::uint64_t key(Index a, Index b) { return (std::uint64_t{a} << 32) | b; }
+Index source(std::uint64_t k) { return static_cast<Index>(k >> 32); }
+Index target(std::uint64_t k) { return static_cast<Index>(k & 0xffffffffu); }
 
-Directed directed_edges(const std::vector<Tri>& faces) {
-  Directed directed;
+std::vector<std::uint64_t> sorted_halfedges(const std::vector<Tri>& faces) {
+  std::vector<std::uint64_t> halfedges;
+  halfedges.reserve(3 * faces.size());
   for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
-  return directed;
+    for (int k = 0; k < 3; ++k) halfedges.push_back(key(f[k], f[(k + 1) % 3]));
+  std::sort(halfedges.begin(), halfedges.end());
+  return halfedges;
 }
 
-/// Around every vertex the faces (a, b, c) link b → c; a manifold vertex's links form one cycle.
+bool contains(const std::vector<std::uint64_t>& sorted, std::uint64_t k) {
+  return std::binary_search(sorted.begin(), sorted.end(), k);
+}
+
+/// Around every vertex a the faces (a, b, c) link b → c; a manifold vertex's links form one cycle.
 bool single_fans(const std::vector<Tri>& faces) {
-  std::map<Index, std::map<Index, Index>> next;
+  std::vector<std::tuple<Index, Index, Index>> links;  // (a, b, c)
   for (const Tri& f : faces)
-    for (int k = 0; k < 3; ++k) next[f[k]][f[(k + 1) % 3]] = f[(k + 2) % 3];
-  for (const auto& [vertex, fan] : next) {
+    for (int k = 0; k < 3; ++k) links.emplace_back(f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+  std::sort(links.begin(), links.end());
+  for (auto begin = links.begin(); begin != links.end();) {
+    const Index a = std::get<0>(*begin);
+    const auto end = std::find_if(begin, links.end(), [&](const auto& l) { return std::get<0>(l) != a; });
+    const auto size = static_cast<std::size_t>(end - begin);
     std::size_t steps = 0;
-    Index at = fan.begin()->first;
+    Index at = std::get<1>(*begin);
     do {
-      const auto it = fan.find(at);
-      if (it == fan.end()) return false;
-      at = it->second;
+      const auto it = std::lower_bound(begin, end, std::make_tuple(a, at, Index{0}));
+      if (it == end || std::get<1>(*it) != at) return false;
+      at = std::get<2>(*it);
       ++steps;
-    } while (at != fan.begin()->first && steps <= fan.size());
-    if (steps != fan.size()) return false;
+    } while (at != std::get<1>(*begin) && steps <= size);
+    if (steps != size) return false;
+    begin = end;
   }
   return true;
 }
@@ -40,24 +57,27 @@ bool single_fans(const std::vector<Tri>& faces) {
 }  // namespace
 
 Borders border_loops(const std::vector<Tri>& faces) {
-  const Directed directed = directed_edges(faces);
-  std::multimap<Index, Index> outgoing;  // border halfedges a → b
-  for (const auto& [edge, count] : directed)
-    if (!directed.count({edge.second, edge.first})) outgoing.emplace(edge.first, edge.second);
+  const std::vector<std::uint64_t> halfedges = sorted_halfedges(faces);
+  std::vector<std::uint64_t> border;  // sorted, since halfedges are
+  for (std::uint64_t h : halfedges)
+    if (!contains(halfedges, key(target(h), source(h)))) border.push_back(h);
   Borders borders;
-  for (auto it = outgoing.begin(); it != outgoing.end(); it = outgoing.upper_bound(it->first))
-    if (outgoing.count(it->first) > 1) borders.pinches.push_back(it->first);
+  for (std::size_t i = 1; i < border.size(); ++i)
+    if (source(border[i]) == source(border[i - 1]) &&
+        (borders.pinches.empty() || borders.pinches.back() != source(border[i])))
+      borders.pinches.push_back(source(border[i]));
   if (!borders.pinches.empty()) return borders;
-  std::map<Index, Index> next(outgoing.begin(), outgoing.end());
-  while (!next.empty()) {
+  std::vector<char> used(border.size(), 0);
+  for (std::size_t first = 0; first < border.size(); ++first) {
+    if (used[first]) continue;  // the lowest unused id starts its loop: deterministic
     std::vector<Index> loop;
-    Index at = next.begin()->first;  // the lowest id starts its loop: deterministic
-    while (true) {
-      const auto it = next.find(at);
-      if (it == next.end()) break;
-      loop.push_back(at);
-      at = it->second;
-      next.erase(it);
+    std::size_t at = first;
+    while (!used[at]) {
+      used[at] = 1;
+      loop.push_back(source(border[at]));
+      const auto next = std::lower_bound(border.begin(), border.end(), key(target(border[at]), 0));
+      if (next == border.end() || source(*next) != target(border[at])) break;
+      at = static_cast<std::size_t>(next - border.begin());
     }
     borders.loops.push_back(std::move(loop));
   }
@@ -86,9 +106,10 @@ std::vector<int> face_components(const std::vector<Tri>& faces, int* count) {
 bool closed_manifold(const std::vector<Tri>& faces) {
   for (const Tri& f : faces)
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return false;
-  const Directed directed = directed_edges(faces);
-  for (const auto& [edge, count] : directed)
-    if (count != 1 || !directed.count({edge.second, edge.first})) return false;
+  const std::vector<std::uint64_t> halfedges = sorted_halfedges(faces);
+  if (std::adjacent_find(halfedges.begin(), halfedges.end()) != halfedges.end()) return false;
+  for (std::uint64_t h : halfedges)
+    if (!contains(halfedges, key(target(h), source(h)))) return false;
   return single_fans(faces);
 }
 

@@ -170,6 +170,20 @@ TEST_CASE("msd refinement: two vertex primitives in a long capsule each take ove
   const std::vector<Primitive> primitives{fit_primitive(capsule, vertex_at({0, 0, -1.2})),
                                           fit_primitive(capsule, vertex_at({0.01, 0, 1.2}))};
   const std::vector<RefinedPrimitive> refined = refine_primitives(primitives, capsule);
+  // Selection: each primitive selects the tip of its own end and nothing past the middle.
+  for (int k = 0; k < 2; ++k) {
+    const double side = k == 0 ? -1 : 1;
+    const std::vector<Index>& selected = refined[k].selected_vertices;
+    const auto is_selected = [&](Index v) { return std::binary_search(selected.begin(), selected.end(), v); };
+    std::size_t tips = 0, wrong_side = 0;
+    for (Index v = 0; v < capsule.mesh().vertices.size(); ++v) {
+      const double z = side * capsule.mesh().vertices[v].z();
+      if (z > 1.7) tips += !is_selected(v);
+      if (z < 0) wrong_side += is_selected(v);
+    }
+    CHECK(tips == 0);
+    CHECK(wrong_side == 0);
+  }
   for (const RefinedPrimitive& r : refined) {
     check_refined(r, capsule);
     // A partial cover: the patch is part of S, and the rest of the template is kept.

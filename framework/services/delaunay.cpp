@@ -11,6 +11,7 @@
 #include <CGAL/hilbert_sort.h>
 #include <CGAL/property_map.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
@@ -245,6 +246,12 @@ void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& point
   });
 }
 
+/// Threads that can run here: the arena's, capped by any tbb::global_control in force.
+int usable_threads() {
+  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(std::min<std::size_t>(tbb::this_task_arena::max_concurrency(), allowed));
+}
+
 /// The Delaunay triangulation of the points, vertex infos set. Small rounds of the insertion
 /// order go in sequentially, large ones concurrently once the triangulation is 3D; the
 /// triangulation is the same either way (CGAL breaks cospherical ties by a symbolic
@@ -253,7 +260,7 @@ void triangulate(Triangulation& dt, const std::vector<K::Point_3>& points, const
                  bool parallel) {
   const auto [order, bounds] = brio_order(points, parallel);
   // On one thread, locking only costs (about 15%): insert everything sequentially.
-  parallel = parallel && tbb::this_task_arena::max_concurrency() > 1;
+  parallel = parallel && usable_threads() > 1;
   Triangulation::Vertex_handle hint;
   for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
     const std::size_t begin = bounds[r], end = bounds[r + 1];

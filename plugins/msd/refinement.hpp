@@ -25,7 +25,7 @@ struct RefineOptions {
   /// When the band between the patch and the template cannot be closed consistently, the patch
   /// loses the ring of triangles along the failing border and the join is retried, at most
   /// this many times.
-  int shrink_retries = 8;
+  int shrink_retries = 16;
   /// Holes of the selected patch of at most this many S triangles (vertices the selection missed
   /// inside the covered region) are filled with S's triangles there when they are consistent.
   std::size_t hole_triangles = 64;

@@ -4,6 +4,7 @@
 #include <medax/services/delaunay.hpp>
 
 #include <catch2/catch.hpp>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <map>
@@ -285,4 +286,11 @@ TEST_CASE("Concurrent Delaunay numbers cells along space, whatever the order of 
   std::size_t jumps = 0;  // consecutive cells farther apart than about four point spacings (0.025)
   for (std::size_t c = 1; c < dt.cells.size(); ++c) jumps += (centroid(dt.cells[c]) - centroid(dt.cells[c - 1])).norm() > 0.1;
   CHECK(jumps < dt.cells.size() / 100);
+}
+
+TEST_CASE("Concurrent Delaunay under a global one-thread limit: the same tetrahedralization", "[geometry][delaunay]") {
+  const auto p = random_points(60000, 29);
+  const auto two = delaunay_tetrahedralize(p, {true, 2});
+  const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  check_identical(two, delaunay_tetrahedralize(p));
 }

@@ -68,7 +68,7 @@ void CollapseQueue::sift_down(std::size_t at) {
 void CollapseQueue::heapify() {
   for (std::size_t at = heap_.size() / kArity + 1; at-- > 0;)
     if (at < heap_.size()) sift_down(at);
-  sweep_above_ = std::max<std::size_t>(2 * heap_.size(), sweep_above_);
+  sweep_above_ = std::max<std::size_t>(heap_.size() + heap_.size() / 4, sweep_above_);
 }
 
 void CollapseQueue::sweep_stale() {
@@ -78,7 +78,7 @@ void CollapseQueue::sweep_stale() {
   for (auto it = live_end; it != heap_.end(); ++it) free_slots_.push_back(it->slot);
   heap_.erase(live_end, heap_.end());
   heapify();
-  sweep_above_ = std::max<std::size_t>(2 * heap_.size(), 4096);
+  sweep_above_ = std::max<std::size_t>(heap_.size() + heap_.size() / 4, 4096);
 }
 
 }  // namespace medax::qmat

@@ -1,11 +1,11 @@
 #pragma once
 // The lazy priority queue of Q-MAT's collapse loop. An entry is the collapse of edge (lo, hi)
 // costed when its endpoints had the given stamps; entries whose endpoint changed since are stale
-// and skipped by the caller. For speed (the queue's cache misses were a sixth of the loop), the
+// and skipped by the caller. For speed (popping stale entries was a tenth of the work), the
 // heap is 4-ary over 32-byte keys, the optimal spheres live in a slot store beside it, the
 // first entries are heapified at once, and stale entries are swept out whenever the heap has
-// doubled since the last sweep. The order is the total order (cost, lo, hi), so the pops of live
-// entries do not depend on any of this.
+// grown by a quarter since the last sweep (most entries go stale before they reach the top).
+// The order is the total order (cost, lo, hi), so the pops of live entries depend on none of it.
 #include "slab_quadric.hpp"
 
 #include <medax/geometry.hpp>

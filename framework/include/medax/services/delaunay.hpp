@@ -4,9 +4,11 @@
 // triangulation with a grid of locks, in a biased randomized order whose large rounds go in
 // concurrently); below, it is CGAL's sequential range insertion. The per-cell work (ordering,
 // neighbours, circumcentres) is parallel in both. The result does not depend on the number of
-// threads: cells are numbered by their sorted corners, the concurrent path gives corners in a
-// canonical order (smallest index first, positively oriented), and CGAL breaks cospherical ties
-// by a symbolic perturbation that does not depend on the insertion order.
+// threads: below 50k points cells are numbered by their sorted corners' point indices; from 50k
+// on by their corners' ranks in the reversed insertion order (a Hilbert curve, so consecutive
+// cells are neighbours in space), which depends on the points only. The concurrent path gives
+// corners in a canonical order (smallest first, positively oriented), and CGAL breaks cospherical
+// ties by a symbolic perturbation that does not depend on the insertion order.
 #include <medax/geometry.hpp>
 
 #include <functional>

@@ -124,16 +124,17 @@ void MsdStage::declare_outputs(ParamBinder& p) {
         "refinement: ... or when the segment from the element to it does not cross S and meets T_P within this "
         "many mean edge lengths ℓ̄ of it (authors' code: 2)").range(0, 1e3);
   p.add("cleanup_length", refine_options_.cleanup_length,
-        "refinement clean-up: edges shorter than this that carry no matched geometry are collapsed (authors' "
-        "code: 5e-3)").range(0, 1).in_unit("unit box");
+        "refinement clean-up: template vertices within this of the S triangles a primitive takes over are "
+        "removed, so no slivers remain (authors' code: 5e-3)").range(0, 1).in_unit("unit box");
   p.add("reconstruction", reconstruction_,
         {{"union", ReconstructionMode::Union}, {"sdf", ReconstructionMode::Sdf}, {"none", ReconstructionMode::None}},
         "Ŝ = ∪ T_P, published for the evaluation stages and written as <id>_reconstruction.off: `union` keeps the "
         "primitives' triangles outside the others (no grid; for the error figures), `sdf` meshes a signed-distance "
         "grid by OpenVDB (the paper's timed SDF reconstruction), `none` builds nothing");
   p.add("union_tolerance", union_.tolerance,
-        "union: a point is inside another primitive only deeper than this (shared faces are kept)")
-      .range(0, 1e-3).in_unit("unit box");
+        "union: a point is inside another primitive only deeper than this; nearer its surface it is on it and "
+        "kept (shared faces, and surfaces interleaving within the fitted T_P's chord error)")
+      .range(0, 1e-2).in_unit("unit box");
   p.add("reconstruction_resolution", sdf_.resolution,
         "sdf: voxels of Ŝ's grid across the longest side of the primitives' bounding box (paper: 256)")
       .range(8, 4096);

@@ -18,8 +18,10 @@ namespace {
 
 using Corners = std::array<Vec3, 3>;
 
-/// Points this many tolerances apart are one point when a triangle is cut.
-constexpr double kMergeTolerances = 4;
+/// Precision of the cuts (bisection, merging) in units of the longest box side of all solids.
+constexpr double kPrecision = 1e-9;
+/// Points this many precisions apart are one point when a triangle is cut.
+constexpr double kMergePrecisions = 4;
 constexpr Index kUnused = static_cast<Index>(-1);
 
 /// One solid and its two queries (CGAL AABB trees in the services).
@@ -32,7 +34,8 @@ struct Solid {
   Eigen::AlignedBox3d box;
 };
 
-/// Where a point is with respect to a solid: outside, on its surface (within the tolerance) or inside.
+/// Where a point is with respect to a solid: outside, on its surface (within the tolerance) or
+/// inside (deeper than the tolerance).
 enum class Side : char { Out, On, In };
 using Sides = std::array<Side, 3>;
 
@@ -43,7 +46,8 @@ Vec3 centroid(const Corners& t) { return (t[0] + t[1] + t[2]) / 3; }
 /// Cuts triangles of other solids against one solid.
 class Cutter {
  public:
-  Cutter(const Solid& solid, double tolerance) : solid_(solid), tolerance_(tolerance) {}
+  Cutter(const Solid& solid, double tolerance, double precision)
+      : solid_(solid), tolerance_(tolerance), precision_(precision) {}
 
   Side side(const Vec3& x) const {
     if (solid_.box.exteriorDistance(x) > tolerance_) return Side::Out;
@@ -79,20 +83,20 @@ class Cutter {
 
  private:
   /// Where the segment from `out` (not inside) to `in` (inside) enters the solid, on the outside
-  /// side, to within the tolerance (bisection: the solid's surface need not be met once). An entry
-  /// within a few tolerances of `out` is `out` itself, so a triangle touching the solid along an
+  /// side, to within the precision (bisection: the solid's surface need not be met once). An entry
+  /// within a few precisions of `out` is `out` itself, so a triangle touching the solid along an
   /// edge or at a corner leaves no sliver.
   Vec3 entry(const Vec3& out, Vec3 in) const {
     Vec3 last_out = out;
-    while ((in - last_out).norm() > tolerance_) {
+    while ((in - last_out).norm() > precision_) {
       const Vec3 mid = 0.5 * (last_out + in);
       (side(mid) == Side::In ? in : last_out) = mid;
     }
-    return (last_out - out).norm() <= kMergeTolerances * tolerance_ ? out : last_out;
+    return (last_out - out).norm() <= kMergePrecisions * precision_ ? out : last_out;
   }
 
   const Solid& solid_;
-  double tolerance_;
+  double tolerance_, precision_;
 };
 
 /// The triangles of one solid's `mesh` outside the others (`overlapping`: those whose boxes meet its box).
@@ -185,7 +189,8 @@ ReconstructedSurface reconstruct_union(const std::vector<SurfaceMesh>& solids, c
                                        const UnionOptions& options) {
   if (std::all_of(solids.begin(), solids.end(), [](const SurfaceMesh& s) { return s.faces.empty(); }))
     throw std::invalid_argument("no primitive surface to build Ŝ from (every primitive failed or was left out)");
-  const double tolerance = options.tolerance * longest_side(solids);
+  const double scale = longest_side(solids);
+  const double tolerance = options.tolerance * scale, precision = kPrecision * scale;
   std::vector<std::unique_ptr<Solid>> built(solids.size());
   tbb::parallel_for(std::size_t{0}, solids.size(), [&](std::size_t k) {
     if (!solids[k].faces.empty()) built[k] = std::make_unique<Solid>(solids[k]);
@@ -196,11 +201,12 @@ ReconstructedSurface reconstruct_union(const std::vector<SurfaceMesh>& solids, c
     if (!built[p]) return;
     std::vector<Cutter> overlapping;
     for (std::size_t q = 0; q < solids.size(); ++q)
-      if (q != p && built[q] && built[q]->box.intersects(built[p]->box)) overlapping.emplace_back(*built[q], tolerance);
+      if (q != p && built[q] && built[q]->box.intersects(built[p]->box))
+        overlapping.emplace_back(*built[q], tolerance, precision);
     parts[p] = outside_part(solids[p], overlapping, cut);
   });
   ReconstructedSurface result;
-  result.surface = weld(parts, tolerance * tolerance);
+  result.surface = weld(parts, precision * precision);
   result.to_input = to_input;
   const auto used = std::count_if(built.begin(), built.end(), [](const auto& s) { return s != nullptr; });
   result.method = fmt::format("union of {} primitive surfaces without a grid: triangles outside the other primitives, "

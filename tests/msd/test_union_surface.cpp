@@ -1,7 +1,8 @@
 // Ŝ without a grid (plugins/msd/union_surface): two overlapping spheres give the analytic union
 // within the meshes' chord error and keep nothing inside the other sphere; boxes on one grid give
 // the union exactly (area, no vertex inside the other box); shared faces are kept once, faces
-// where two solids touch are dropped; the same surface with 1 or 2 threads; with refined
+// where two solids touch are dropped; a surface within the tolerance of another is kept; the same
+// surface with 1 or 2 threads; with refined
 // primitives covering all of S, Ŝ holds every vertex of S exactly (ε̄¹ = 0) and the refinement
 // does not raise ε̄.
 #include "fitting.hpp"
@@ -97,7 +98,7 @@ bool strictly_inside(const Vec3& x, const Vec3& low, const Vec3& high) {
 TEST_CASE("msd union Ŝ of two overlapping spheres is their analytic union within the chord error") {
   const Vec3 a(0, 0, 0), b(1, 0, 0);  // radius 1, centres 1 apart
   const SurfaceMesh one = unit_sphere(a), two = unit_sphere(b);
-  const ReconstructedSurface rebuilt = reconstruct_union({one, two}, Similarity{});
+  const ReconstructedSurface rebuilt = reconstruct_union({one, two}, Similarity{}, UnionOptions{1e-9});
   const SurfaceMesh& mesh = rebuilt.surface;
   CHECK_THAT(rebuilt.method, Catch::Contains("without a grid"));
   REQUIRE(mesh.faces.size() > 1000);
@@ -144,6 +145,18 @@ TEST_CASE("msd union Ŝ keeps triangles two solids share once and drops faces wh
     check_closed_manifold(mesh.faces, mesh.vertices.size());
   }
   CHECK_THROWS_WITH(reconstruct_union({SurfaceMesh{}}, Similarity{}), Catch::Contains("no primitive surface"));
+}
+
+TEST_CASE("msd union Ŝ keeps a surface within the tolerance of another, and drops it when deeper") {
+  // The unit sphere inside a copy 5e-4 larger: with the default tolerance (1e-3) it is on the
+  // larger one and both layers stay; judged to 1e-9 it is inside and only the larger one stays.
+  const SurfaceMesh inner = unit_sphere({0, 0, 0});
+  SurfaceMesh outer = inner;
+  for (Vec3& v : outer.vertices) v *= 1.0005;
+  CHECK(reconstruct_union({inner, outer}, Similarity{}).surface.faces.size() == 2 * inner.faces.size());
+  const SurfaceMesh strict = reconstruct_union({inner, outer}, Similarity{}, UnionOptions{1e-9}).surface;
+  CHECK(strict.faces.size() == outer.faces.size());
+  CHECK(area(strict) == Approx(area(outer)).epsilon(1e-12));
 }
 
 TEST_CASE("msd union Ŝ is the same surface with 1 or 2 threads") {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <deque>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 namespace medax::msd::refine {
@@ -50,11 +51,11 @@ std::unordered_map<std::uint64_t, Index> faces_by_halfedge(const SurfaceMesh& s)
 std::vector<Index> hole_faces(const SurfaceMesh& s, const std::unordered_map<std::uint64_t, Index>& by_halfedge,
                               const std::vector<Index>& loop, const std::vector<char>& in_patch, std::size_t limit) {
   std::vector<Index> found;
-  std::map<Index, char> seen;
+  std::set<Index> seen;
   std::deque<Index> queue;
   const auto visit = [&](Index a, Index b) {  // the face across S's halfedge a → b
     const auto it = by_halfedge.find((std::uint64_t{b} << 32) | a);
-    if (it == by_halfedge.end() || in_patch[it->second] || !seen.emplace(it->second, 1).second) return;
+    if (it == by_halfedge.end() || in_patch[it->second] || !seen.insert(it->second).second) return;
     queue.push_back(it->second);
   };
   for (std::size_t i = 0; i < loop.size(); ++i) visit(loop[i], loop[(i + 1) % loop.size()]);

@@ -2,6 +2,15 @@
 // Feature-preserving refinement of a fitted primitive (paper §5.4; notes §2.8): T_P is changed so
 // that it reproduces exactly the part of S it covers, with S's own vertices and triangles there,
 // while staying closed, 2-manifold and consistent (one radius per direction of the element).
+// How (refine_*.hpp, one step each): select S's covered vertices and triangles by the authors'
+// rules; keep the selected triangles that face away from their corners' element points (exact
+// orientation), filling small holes; remove the template triangles whose vertices' rays meet that
+// patch or whose vertices lie within cleanup_length of it, and those the patch vertices' rays
+// meet; snap the template's border ring onto S along its directions; join each patch border to
+// a template border by a band of consistent triangles (a dynamic programme on ∂P^ρ0); check the
+// result (closed 2-manifold sphere, no self-intersection, wraps the element once) or retry with
+// the failing border's ring of the patch removed. The patch triangles are S's triangles with
+// S's coordinates copied, so matched vertices and edges are exact.
 #include "primitive.hpp"
 #include "target_mesh.hpp"
 

@@ -20,14 +20,15 @@ const FlipTest::Fan& FlipTest::fan_of(Index v) {
   mesh_.for_each_face(v, [&](Index f) {
     const Tri& t = mesh_.face(f);
     const int at = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-    const Index va = t[(at + 1) % 3], vb = t[(at + 2) % 3];
-    const Vec3& a = centre_of(mesh_.spheres[va]);
-    const Vec3& b = centre_of(mesh_.spheres[vb]);
-    const Vec3 e1 = a - p, e2 = b - p;
-    const Vec3 n0 = e1.cross(e2);
+    Corner& c = fan.corners.emplace_back();  // filled in place: the gathering is the hot loop
+    c.va = t[(at + 1) % 3];
+    c.vb = t[(at + 2) % 3];
+    c.a = centre_of(mesh_.spheres[c.va]);
+    c.b = centre_of(mesh_.spheres[c.vb]);
+    const Vec3 e1 = c.a - p, e2 = c.b - p;
+    c.normal = e1.cross(e2);
     // A sliver (the Voronoi axis has many, from nearly coincident vertices) has no normal to flip.
-    if (!(n0.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) return;
-    fan.corners.push_back({a, b, n0, va, vb});
+    if (!(c.normal.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) fan.corners.pop_back();
   });
   return fan;
 }

@@ -15,35 +15,40 @@ SlabQuadric SlabQuadric::tangent_plane(const Vec3& n, const Vec4& at, double wei
   return q;
 }
 
-Vec4 solve_partial_pivot(Mat4 lu, Vec4 x) {
+Vec4 solve_partial_pivot(Mat4 A, Vec4 x) {
   // Eigen's unblocked partial-pivot LU of a fixed 4×4: pivot = first largest |entry| of the
-  // column, row swap, column scaled by the pivot, rank-one update of the trailing block.
+  // column, row swap, column divided by the pivot, rank-one update of the trailing block. On a
+  // plain array, which the compiler unrolls.
+  double lu[4][4];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) lu[r][c] = A(r, c);
   int pivot[3];
   for (int k = 0; k < 3; ++k) {
     int p = k;
+    double biggest = std::abs(lu[k][k]);
     for (int r = k + 1; r < 4; ++r)
-      if (std::abs(lu(r, k)) > std::abs(lu(p, k))) p = r;
+      if (std::abs(lu[r][k]) > biggest) p = r, biggest = std::abs(lu[r][k]);
     pivot[k] = p;
-    if (std::abs(lu(p, k)) != 0) {
-      if (p != k) lu.row(k).swap(lu.row(p));
-      for (int r = k + 1; r < 4; ++r) lu(r, k) /= lu(k, k);
+    if (biggest != 0) {
+      if (p != k) std::swap(lu[k], lu[p]);
+      for (int r = k + 1; r < 4; ++r) lu[r][k] /= lu[k][k];
     }
     for (int c = k + 1; c < 4; ++c)
-      for (int r = k + 1; r < 4; ++r) lu(r, c) -= lu(k, c) * lu(r, k);
+      for (int r = k + 1; r < 4; ++r) lu[r][c] -= lu[k][c] * lu[r][k];
   }
   for (int k = 0; k < 3; ++k) std::swap(x[k], x[pivot[k]]);
   // Eigen's unrolled triangular solves: unit lower, then upper; the dot products of two or
   // three terms are summed as a₀ + a₁ and a₀ + (a₁ + a₂).
-  x[1] -= lu(1, 0) * x[0];
-  x[2] -= lu(2, 0) * x[0] + lu(2, 1) * x[1];
-  x[3] -= lu(3, 0) * x[0] + (lu(3, 1) * x[1] + lu(3, 2) * x[2]);
-  x[3] /= lu(3, 3);
-  x[2] -= lu(2, 3) * x[3];
-  x[2] /= lu(2, 2);
-  x[1] -= lu(1, 2) * x[2] + lu(1, 3) * x[3];
-  x[1] /= lu(1, 1);
-  x[0] -= lu(0, 1) * x[1] + (lu(0, 2) * x[2] + lu(0, 3) * x[3]);
-  x[0] /= lu(0, 0);
+  x[1] -= lu[1][0] * x[0];
+  x[2] -= lu[2][0] * x[0] + lu[2][1] * x[1];
+  x[3] -= lu[3][0] * x[0] + (lu[3][1] * x[1] + lu[3][2] * x[2]);
+  x[3] /= lu[3][3];
+  x[2] -= lu[2][3] * x[3];
+  x[2] /= lu[2][2];
+  x[1] -= lu[1][2] * x[2] + lu[1][3] * x[3];
+  x[1] /= lu[1][1];
+  x[0] -= lu[0][1] * x[1] + (lu[0][2] * x[2] + lu[0][3] * x[3]);
+  x[0] /= lu[0][0];
   return x;
 }
 

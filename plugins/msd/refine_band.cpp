@@ -67,25 +67,28 @@ Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& pa
   const std::vector<int> component = face_components(remaining, &count);
   const std::vector<int> loop_component = loop_components(template_borders.loops, remaining, component);
   const std::vector<int> pair = pair_loops(patch_borders.loops, template_borders.loops, points);
-  std::vector<char> keep(count, 0), unpaired(count, 0);
-  std::vector<char> paired(template_borders.loops.size(), 0);
+  // Each patch border gets a band to its template border, or else a cap; the template
+  // components kept are those a band joins, and every border of a kept one must be joined.
+  std::vector<char> keep(count, 0), joined(template_borders.loops.size(), 0);
   for (std::size_t p = 0; p < pair.size(); ++p) {
-    if (pair[p] < 0) return {{}, {}, fmt::format("patch border {} has no template border to join", p), {}};
-    paired[pair[p]] = 1;
-    keep[loop_component[pair[p]]] = 1;
-  }
-  for (std::size_t t = 0; t < paired.size(); ++t) unpaired[loop_component[t]] |= !paired[t];
-  for (int c = 0; c < count; ++c)
-    if (keep[c] && unpaired[c]) return {{}, {}, "a template component keeps a border no patch border joins"};
-  for (std::size_t f = 0; f < remaining.size(); ++f)
-    if (keep[component[f]]) closure.remaining.push_back(remaining[f]);
-  for (std::size_t p = 0; p < pair.size(); ++p) {
-    auto band = stitch_band(patch_borders.loops[p], template_borders.loops[pair[p]], points);
+    auto band = pair[p] < 0 ? std::nullopt : stitch_band(patch_borders.loops[p], template_borders.loops[pair[p]], points);
+    if (band) {
+      joined[pair[p]] = 1;
+      keep[loop_component[pair[p]]] = 1;
+    } else {
+      band = cap_loop(patch_borders.loops[p], points);
+    }
     if (!band)
-      return {{}, {}, fmt::format("no consistent band for patch border {} ({} vertices)", p, patch_borders.loops[p].size()),
+      return {{}, {}, fmt::format("no consistent band or cap for patch border {} ({} vertices)", p,
+                                  patch_borders.loops[p].size()),
               patch_borders.loops[p]};
     closure.band.insert(closure.band.end(), band->begin(), band->end());
   }
+  for (std::size_t t = 0; t < joined.size(); ++t)
+    if (keep[loop_component[t]] && !joined[t])
+      return {{}, {}, "a template component keeps a border no patch border joins", {}};
+  for (std::size_t f = 0; f < remaining.size(); ++f)
+    if (keep[component[f]]) closure.remaining.push_back(remaining[f]);
   return closure;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Step 4 of the refinement: the remaining template and the patch are joined. Every patch border
 // is paired with the nearest border of the remaining template on ∂P^ρ0 and the band between
-// them is triangulated (refine_stitch); remaining components none of whose borders is paired
-// lie inside the patch's directions (islands) and are dropped.
+// them is triangulated (refine_stitch); a border that no band joins is capped (ear clipping on
+// ∂P^ρ0). Remaining components no band joins lie inside the patch's directions (islands, or a
+// remnant beyond a cap) and are dropped.
 #include "refine_geometry.hpp"
 
 #include <string>

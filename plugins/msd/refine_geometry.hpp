@@ -33,4 +33,7 @@ bool faces_away(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& inside)
 /// (its image on the template surface): no fold-over along the direction field.
 bool consistent_triangle(const FramedPoint& a, const FramedPoint& b, const FramedPoint& c);
 
+/// Exact: y lies strictly inside the cone from `apex` over the triangle (p, q, r).
+bool in_cone(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& apex, const Vec3& y);
+
 }  // namespace medax::msd::refine

@@ -70,7 +70,46 @@ std::optional<std::vector<Tri>> stitch_walk(const Walk& walk, const std::vector<
   return band;
 }
 
+/// The ear (c[i−1], c[i], c[i+1]) of the polygon c can be cut.
+bool is_ear(const std::vector<Index>& c, std::size_t i, const std::vector<FramedPoint>& points) {
+  const std::size_t n = c.size();
+  const Index p = c[(i + n - 1) % n], q = c[i], r = c[(i + 1) % n];
+  if (!consistent(points, p, q, r)) return false;
+  const Vec3 apex = (points[p].base + points[q].base + points[r].base) / 3;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Index y = c[k];
+    if (y != p && y != q && y != r &&
+        in_cone(points[p].projected, points[q].projected, points[r].projected, apex, points[y].projected))
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+std::optional<std::vector<Tri>> cap_loop(const std::vector<Index>& loop, const std::vector<FramedPoint>& points) {
+  // The cap lies on the right of the border: walk the loop backwards so it is on the left.
+  std::vector<Index> c(loop.rbegin(), loop.rend());
+  std::vector<Tri> cap;
+  while (c.size() > 3) {
+    std::size_t best = c.size();
+    double shortest = kInfinity;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double length =
+          (points[c[(i + c.size() - 1) % c.size()]].projected - points[c[(i + 1) % c.size()]].projected).norm();
+      if (length < shortest && is_ear(c, i, points)) {
+        shortest = length;
+        best = i;
+      }
+    }
+    if (best == c.size()) return std::nullopt;
+    cap.push_back({c[(best + c.size() - 1) % c.size()], c[best], c[(best + 1) % c.size()]});
+    c.erase(c.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  if (c.size() < 3 || !consistent(points, c[0], c[1], c[2])) return std::nullopt;
+  cap.push_back({c[0], c[1], c[2]});
+  return cap;
+}
 
 std::optional<std::vector<Tri>> stitch_band(const std::vector<Index>& inner, const std::vector<Index>& outer,
                                             const std::vector<FramedPoint>& points) {

@@ -17,4 +17,9 @@ namespace medax::msd::refine {
 std::optional<std::vector<Tri>> stitch_band(const std::vector<Index>& inner, const std::vector<Index>& outer,
                                             const std::vector<FramedPoint>& points);
 
+/// Closes a patch border with no template left to join (or none a band can reach) by a cap:
+/// ear clipping of the loop on ∂P^ρ0, shortest new edge first, each ear consistent and holding
+/// no other loop vertex in its cone from the element. nullopt when it gets stuck.
+std::optional<std::vector<Tri>> cap_loop(const std::vector<Index>& loop, const std::vector<FramedPoint>& points);
+
 }  // namespace medax::msd::refine

@@ -22,6 +22,8 @@ using Corners = std::array<Vec3, 3>;
 constexpr double kPrecision = 1e-9;
 /// Points this many precisions apart are one point when a triangle is cut.
 constexpr double kMergePrecisions = 4;
+/// Halvings of a triangle whose corners are inside a solid but whose centroid is not.
+constexpr int kSplits = 2;
 constexpr Index kUnused = static_cast<Index>(-1);
 
 /// One solid and its two queries (CGAL AABB trees in the services).
@@ -43,6 +45,14 @@ bool any(const Sides& sides, Side side) { return std::find(sides.begin(), sides.
 
 Vec3 centroid(const Corners& t) { return (t[0] + t[1] + t[2]) / 3; }
 
+/// The four triangles of `t` split at its edges' midpoints, oriented as `t`.
+std::array<Corners, 4> quarters(const Corners& t) {
+  const Vec3 a = 0.5 * (t[0] + t[1]), b = 0.5 * (t[1] + t[2]), c = 0.5 * (t[2] + t[0]);
+  return {Corners{t[0], a, c}, Corners{a, t[1], b}, Corners{c, b, t[2]}, Corners{a, b, c}};
+}
+
+enum class Verdict { Keep, Drop, Cut, Split };
+
 /// Cuts triangles of other solids against one solid.
 class Cutter {
  public:
@@ -54,19 +64,37 @@ class Cutter {
     if (solid_.surface.distance(x) <= tolerance_) return Side::On;
     return solid_.side.inside(x) ? Side::In : Side::Out;
   }
-  /// Triangle `t`, its corners on `sides`, lies in the solid: no corner outside, and a corner or
-  /// else the centroid inside (a chord across the solid between points of its surface).
-  bool covers(const Corners& t, const Sides& sides) const {
-    if (any(sides, Side::Out)) return false;
-    return any(sides, Side::In) || side(centroid(t)) == Side::In;
+  /// What becomes of triangle `t` against the solid, from where its corners are (`sides`) and,
+  /// when no corner is outside, its centroid.
+  Verdict verdict(const Corners& t, const Sides& sides) const {
+    const bool in = any(sides, Side::In), out = any(sides, Side::Out);
+    if (in && out) return Verdict::Cut;
+    if (out) return Verdict::Keep;  // a solid poking through its interior is missed
+    const Side centre = side(centroid(t));
+    if (centre == Side::In) return Verdict::Drop;
+    // Corners in and the centre outside: t leaves the solid between its corners. Corners in and
+    // the centre on the surface: inside as far as the tolerance tells. All on and the centre not
+    // in: a face the two share.
+    if (in) return centre == Side::Out ? Verdict::Split : Verdict::Drop;
+    return Verdict::Keep;
   }
-  static bool cuts(const Sides& sides) { return any(sides, Side::In) && any(sides, Side::Out); }
 
-  /// Appends the part of triangle `t` outside the solid, judged by its corners, as triangles.
-  void clip(const Corners& t, std::vector<Corners>& kept) const {
+  /// Appends the part of triangle `t` outside the solid as triangles; `splits` more halvings are
+  /// allowed where the corners do not decide (the last level keeps what it cannot decide).
+  void clip(const Corners& t, std::vector<Corners>& kept, int splits = kSplits) const {
     const Sides sides{side(t[0]), side(t[1]), side(t[2])};
-    if (covers(t, sides)) return;
-    if (!cuts(sides)) return kept.push_back(t);
+    switch (verdict(t, sides)) {
+      case Verdict::Keep:
+        return kept.push_back(t);
+      case Verdict::Drop:
+        return;
+      case Verdict::Split:
+        if (splits == 0) return kept.push_back(t);
+        for (const Corners& quarter : quarters(t)) clip(quarter, kept, splits - 1);
+        return;
+      case Verdict::Cut:
+        break;
+    }
     std::vector<Vec3> polygon;  // t's outside part, in t's cyclic order: at most 4 corners, convex
     const auto add = [&polygon](const Vec3& x) {
       if (polygon.empty() || polygon.back() != x) polygon.push_back(x);
@@ -113,9 +141,9 @@ std::vector<Corners> outside_part(const SurfaceMesh& mesh, const std::vector<Cut
     std::vector<const Cutter*> cutting;
     bool covered = false;
     for (std::size_t j = 0; j < overlapping.size() && !covered; ++j) {
-      const Sides corner_sides{sides[j][f[0]], sides[j][f[1]], sides[j][f[2]]};
-      covered = overlapping[j].covers(t, corner_sides);
-      if (Cutter::cuts(corner_sides)) cutting.push_back(&overlapping[j]);
+      const Verdict v = overlapping[j].verdict(t, {sides[j][f[0]], sides[j][f[1]], sides[j][f[2]]});
+      covered = v == Verdict::Drop;
+      if (v == Verdict::Cut || v == Verdict::Split) cutting.push_back(&overlapping[j]);
     }
     if (covered) continue;
     std::vector<Corners> pieces{t};

@@ -23,10 +23,15 @@ struct UnionOptions {
 /// working frame (`to_input` copied into the result). Each triangle is judged against every other
 /// solid whose box meets its solid's box, by where its corners are (outside, on the surface within
 /// the tolerance, inside):
-/// - no corner outside and a corner inside, or all on the surface and the centroid inside: dropped;
 /// - a corner inside and a corner outside: clipped, each crossing edge cut where it enters the
-///   solid (bisection down to the tolerance), the outside part re-triangulated;
-/// - otherwise kept whole (a solid poking through its interior without reaching a corner is missed).
+///   solid (bisection to 1e-9 of the box), the outside part re-triangulated;
+/// - corners outside or on, none inside: kept whole (a solid poking through its interior without
+///   reaching a corner is missed);
+/// - no corner outside: dropped when the centroid is inside, kept when all corners and the centroid
+///   are on (a face the two share); with a corner inside and the centroid outside the triangle
+///   leaves the solid between its corners, so it is halved at its edges' midpoints (twice at most)
+///   and the quarters judged again, the last level keeping what it cannot decide; with a corner
+///   inside and the centroid on the surface, dropped.
 /// Vertices with equal coordinates are merged; of identical triangles one is kept, and a triangle
 /// present in both orientations (two solids touching face to face) is dropped. The result is
 /// watertight only where no cut was made: along the curves where solids cross, the pieces of the

@@ -78,12 +78,16 @@ Closure close_band(const std::vector<Tri>& remaining, const std::vector<Tri>& pa
     } else {
       band = cap_loop(patch_borders.loops[p], points);
     }
-    if (!band)
-      return {{}, {}, fmt::format("no consistent band or cap for patch border {} ({} vertices)", p,
-                                  patch_borders.loops[p].size()),
-              patch_borders.loops[p]};
+    if (!band) {  // every failing border is reported, so that one retry can fix them all
+      if (closure.failure.empty())
+        closure.failure = fmt::format("no consistent band or cap for patch border {} ({} vertices)", p,
+                                      patch_borders.loops[p].size());
+      closure.failed_loop.insert(closure.failed_loop.end(), patch_borders.loops[p].begin(), patch_borders.loops[p].end());
+      continue;
+    }
     closure.band.insert(closure.band.end(), band->begin(), band->end());
   }
+  if (!closure.failure.empty()) return {{}, {}, closure.failure, closure.failed_loop};
   for (std::size_t t = 0; t < joined.size(); ++t)
     if (keep[loop_component[t]] && !joined[t])
       return {{}, {}, "a template component keeps a border no patch border joins", {}};

@@ -15,7 +15,7 @@ struct Closure {
   std::vector<Tri> remaining;  ///< the template faces kept
   std::vector<Tri> band;
   std::string failure;         ///< empty on success
-  std::vector<Index> failed_loop;  ///< the patch border no band could join, when that was the failure
+  std::vector<Index> failed_loop;  ///< the vertices of the patch borders no band or cap could close
 };
 
 /// Joins `patch` (non-empty, with at least one border) to `remaining`.

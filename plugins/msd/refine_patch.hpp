@@ -36,7 +36,7 @@ Patch build_patch(const Primitive& primitive, const TargetMesh& target, const st
 /// The patch without its border ring (the faces touching a border vertex): a retry when the
 /// band cannot be closed, e.g. because the patch's hole is narrower than the template spacing.
 Patch shrink_patch(const Patch& patch);
-/// The patch without the faces touching `loop` (one border that could not be joined).
+/// The patch without the faces touching `loop` (the vertices of borders that could not be joined).
 Patch shrink_patch_at(const Patch& patch, std::vector<Index> loop);
 
 }  // namespace medax::msd::refine

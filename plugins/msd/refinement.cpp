@@ -137,7 +137,7 @@ RefinedPrimitive refine_fitted(const Primitive& primitive, const TargetMesh& tar
   RefinedPrimitive result;
   std::vector<Index> failed_loop;
   std::string why = join(primitive, target, options, points, patch, result, failed_loop);
-  // A patch whose band cannot be closed is retried without the ring along the border that
+  // A patch whose band cannot be closed is retried without the ring along the borders that
   // failed (or its whole border ring), a few times.
   for (int shrink = 1; shrink <= options.shrink_retries && !why.empty() && !patch.faces.empty(); ++shrink) {
     patch = failed_loop.empty() ? refine::shrink_patch(patch) : refine::shrink_patch_at(patch, failed_loop);

@@ -8,11 +8,17 @@
 #include <command_output.hpp>
 #include <test_paths.hpp>
 
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 #include <string>
 
 namespace medax::test {
+
+/// A scratch name of this process: ctest runs each test case as its own process, two at a time,
+/// and cases that shared one folder removed each other's run and browser profile.
+inline std::string per_process(const std::string& name) { return name + "-" + std::to_string(::getpid()); }
 
 inline std::string file_text(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -25,14 +31,14 @@ inline std::string file_text(const std::filesystem::path& file) {
 /// `view` prints the page's path instead of opening a browser.
 inline CommandOutput run_medax(const std::string& args) {
   return run_command("env -u DISPLAY -u WAYLAND_DISPLAY MEDAX_PLUGIN_PATH= '" + std::string(MEDAX_CLI) + "' " + args,
-                     binary_dir() / "tests" / "scratch" / "viewer_medax_stderr.txt");
+                     binary_dir() / "tests" / "scratch" / (per_process("viewer_medax") + ".stderr.txt"));
 }
 
 /// The run folder of tests/viewer/small_run.yaml (quickstart's axis of tests/data/ellipsoid.off),
 /// made once per process.
 inline const std::filesystem::path& small_run() {
   static const std::filesystem::path folder = [] {
-    const auto dir = scratch_dir("viewer_run") / "quickstart-ellipsoid";
+    const auto dir = scratch_dir(per_process("viewer_run")) / "quickstart-ellipsoid";
     const auto r = run_medax("run '" + (source_dir() / "tests" / "viewer" / "small_run.yaml").string() + "' --input '" +
                              (data_dir() / "ellipsoid.off").string() + "' --out '" + dir.string() + "' --quiet");
     INFO(r.out << r.err);
@@ -54,7 +60,13 @@ inline std::filesystem::path small_run_page() {
 /// Headless Chromium on a page; a browser that cannot start fails the test with its last words.
 class Browser {
  public:
-  Browser() : dir_(scratch_dir("viewer_browser")) {}
+  Browser() : dir_(scratch_dir(per_process("viewer_browser"))) {}
+  ~Browser() {
+    std::error_code ignored;  // the profile is megabytes and per process: do not let them pile up
+    std::filesystem::remove_all(dir_, ignored);
+  }
+  Browser(const Browser&) = delete;
+  Browser& operator=(const Browser&) = delete;
 
   /// The page's DOM after its scripts ran (`--dump-dom`), and the browser's log in `log`.
   std::string dom(const std::filesystem::path& page, const std::string& query, std::string& log) {

@@ -21,23 +21,6 @@ using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primit
 K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
-/// cp(x; P): the closest point of the element.
-Vec3 closest_on_element(const SkeletonElement& element, const Vec3& x) {
-  const K::Point_3 q = point(x);
-  switch (element.kind) {
-    case ElementKind::Vertex:
-      return element.corners[0];
-    case ElementKind::Edge: {
-      const Vec3 &a = element.corners[0], &b = element.corners[1];
-      const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-      return a + t * (b - a);
-    }
-    case ElementKind::Triangle:
-      break;
-  }
-  const K::Triangle_3 triangle(point(element.corners[0]), point(element.corners[1]), point(element.corners[2]));
-  return vec(K().construct_projected_point_3_object()(triangle, q));
-}
 
 }  // namespace
 
@@ -64,7 +47,7 @@ PrimitiveShape::PrimitiveShape(PrimitiveShape&&) noexcept = default;
 PrimitiveShape& PrimitiveShape::operator=(PrimitiveShape&&) noexcept = default;
 
 double PrimitiveShape::radial(const Vec3& x) const {
-  const Vec3 p = closest_on_element(impl_->element, x);
+  const Vec3 p = impl_->element.closest_point(x);
   const double length = (x - p).norm();
   if (length == 0) return -std::numeric_limits<double>::infinity();  // on the element: inside
   const Vec3 d = (x - p) / length;

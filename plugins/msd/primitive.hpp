@@ -23,6 +23,8 @@ struct SkeletonElement {
   int corner_count() const { return static_cast<int>(kind); }
   /// Mean of the corners.
   Vec3 centre() const;
+  /// cp(x; P): the point of the element closest to x.
+  Vec3 closest_point(const Vec3& x) const;
 };
 
 /// The discretised direction set d(P): one template vertex per direction, with its base point on

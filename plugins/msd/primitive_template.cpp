@@ -1,5 +1,6 @@
 #include "primitive_template.hpp"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -243,6 +244,25 @@ Vec3 SkeletonElement::centre() const {
   Vec3 sum = Vec3::Zero();
   for (int k = 0; k < corner_count(); ++k) sum += corners[k];
   return sum / corner_count();
+}
+
+Vec3 SkeletonElement::closest_point(const Vec3& x) const {
+  switch (kind) {
+    case ElementKind::Vertex:
+      return corners[0];
+    case ElementKind::Edge: {
+      const Vec3 &a = corners[0], &b = corners[1];
+      const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      return a + t * (b - a);
+    }
+    case ElementKind::Triangle:
+      break;
+  }
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  const auto point = [](const Vec3& p) { return K::Point_3(p.x(), p.y(), p.z()); };
+  const K::Triangle_3 triangle(point(corners[0]), point(corners[1]), point(corners[2]));
+  const K::Point_3 q = K().construct_projected_point_3_object()(triangle, point(x));
+  return {q.x(), q.y(), q.z()};
 }
 
 std::vector<Vec3> primitive_vertices(const PrimitiveTemplate& shape, const std::vector<double>& r) {

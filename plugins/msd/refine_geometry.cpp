@@ -9,7 +9,6 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-Vec3 vec(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 bool faces_away_all(const Vec3& p, const Vec3& q, const Vec3& r, const FramedPoint& a, const FramedPoint& b,
                     const FramedPoint& c) {
@@ -18,25 +17,10 @@ bool faces_away_all(const Vec3& p, const Vec3& q, const Vec3& r, const FramedPoi
 
 }  // namespace
 
-Vec3 closest_on_element(const SkeletonElement& element, const Vec3& x) {
-  switch (element.kind) {
-    case ElementKind::Vertex:
-      return element.corners[0];
-    case ElementKind::Edge: {
-      const Vec3 &a = element.corners[0], &b = element.corners[1];
-      const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-      return a + t * (b - a);
-    }
-    case ElementKind::Triangle:
-      break;
-  }
-  const K::Triangle_3 triangle(point(element.corners[0]), point(element.corners[1]), point(element.corners[2]));
-  return vec(K().construct_projected_point_3_object()(triangle, point(x)));
-}
 
 Framing frame_point(const SkeletonElement& element, double initial_radius, const Vec3& x) {
   Framing framing;
-  const Vec3 base = closest_on_element(element, x);
+  const Vec3 base = element.closest_point(x);
   const double length = (x - base).norm();
   if (!(length > 0)) return framing;
   framing.point = {x, base, base + initial_radius * (x - base) / length};

@@ -1,13 +1,10 @@
 #pragma once
-// Geometry of the element's direction field that the refinement needs (notes §2.8): the closest
-// point b(x) of the element, the direction d(x), the image of x on the template surface ∂P^ρ0
+// Geometry of the element's direction field that the refinement needs (notes §2.8): the direction
+// d(x) from the element's closest point b(x), the image of x on the template surface ∂P^ρ0
 // (b + ρ0 d, the direction domain), and the exact test that a triangle faces away from a point.
 #include "primitive.hpp"
 
 namespace medax::msd::refine {
-
-/// cp(x; P): the closest point of the element.
-Vec3 closest_on_element(const SkeletonElement& element, const Vec3& x);
 
 /// A mesh vertex as the refinement sees it: its position, its base b ∈ P and its image
 /// b + ρ0 d on the template surface.

@@ -26,7 +26,7 @@ bool selected_vertex(const PrimitiveShape& shape, const Primitive& primitive, co
   if (std::abs(shape.signed_distance(x)) < distance) return true;
   const double radial = shape.radial(x);  // ℰ(x; T_P): negative inside, else the gap along the ray
   if (radial <= 0) return true;
-  return radial < reach && reaches_without_crossing(target, closest_on_element(primitive.element, x), x);
+  return radial < reach && reaches_without_crossing(target, primitive.element.closest_point(x), x);
 }
 
 }  // namespace

@@ -134,15 +134,28 @@ TEST_CASE("reconstruction: a capsule against its two spheres and cone gives the 
   }
 }
 
-TEST_CASE("reconstruction: a complex that misses part of the shape: surface to envelope sees it", "[reconstruction]") {
-  // Half a capsule's axis: the far hemisphere is uncovered by 2·half_length / 2.
-  const double radius = 0.3, half = 0.7;
+namespace {
+
+/// A capsule (radius 0.3, half-length 0.7) and half its axis: the far hemisphere is uncovered.
+struct HalfCoveredCapsule {
+  double radius = 0.3, half = 0.7;
   Shape shape;
-  shape.mesh = testing::make_capsule(radius, half, 96);
   MedialComplex mc;
-  mc.add_vertex({0, 0, -half}, radius);
-  mc.add_vertex({0, 0, 0}, radius);
-  mc.add_edge(0, 1);
+  HalfCoveredCapsule() {
+    shape.mesh = testing::make_capsule(radius, half, 96);
+    mc.add_vertex({0, 0, -half}, radius);
+    mc.add_vertex({0, 0, 0}, radius);
+    mc.add_edge(0, 1);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("reconstruction: a complex that misses part of the shape: surface to envelope sees it", "[reconstruction]") {
+  const HalfCoveredCapsule capsule;
+  const double radius = capsule.radius, half = capsule.half;
+  const Shape& shape = capsule.shape;
+  const MedialComplex& mc = capsule.mc;
   const Metrics m = reconstruction(shape, mc);
   // The top pole is at distance half from the envelope's top.
   CHECK(m.at("surface_to_envelope_max") == Approx(half).margin(1e-9));
@@ -157,13 +170,10 @@ TEST_CASE("reconstruction: the default point budget enlarges a slender shape's s
           "[reconstruction]") {
   // The capsule and half-axis complex above: surface → envelope is exact at any step, envelope →
   // surface within the samples' covering radius (below a step).
-  const double radius = 0.3, half = 0.7;
-  Shape shape;
-  shape.mesh = testing::make_capsule(radius, half, 96);
-  MedialComplex mc;
-  mc.add_vertex({0, 0, -half}, radius);
-  mc.add_vertex({0, 0, 0}, radius);
-  mc.add_edge(0, 1);
+  const HalfCoveredCapsule capsule;
+  const double radius = capsule.radius, half = capsule.half;
+  const Shape& shape = capsule.shape;
+  const MedialComplex& mc = capsule.mc;
   // resolution 40: the VMAS rule's step is 0.6 / 40, which would give about 1.5 × area / step²
   // ≈ 25,000 points on the capsule's surface, more than the default budget.
   const Metrics vmas = reconstruction(shape, mc, {{"resolution", 40LL}, {"max_envelope_samples", 0LL}});

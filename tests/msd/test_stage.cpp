@@ -86,15 +86,7 @@ TEST_CASE("msd stage on the ellipsoid: the skeleton replaces M, outputs are writ
   scene.medial = read_ma(medax::test::data_dir() / "msd_ellipsoid_vmas.ma");
   const MedialMesh m = MedialMesh::from_complex(*scene.medial);
   MsdStage stage;
-  ParamSet params;
-  params.set("n_init", 3LL);
-  params.set("first_iterations", 6LL);
-  params.set("add_every", 4LL);
-  params.set("max_iterations", 10LL);
-  params.set("search_sphere_vertices", 100LL);
-  params.set("sphere_vertices", 200LL);
-  params.set("reconstruction", std::string("sdf"));
-  params.set("refine", false);
+  ParamSet params = short_run(false, "sdf");
   params.set("reconstruction_resolution", 64LL);
   stage.configure(params);
   stage.set_id("msd");

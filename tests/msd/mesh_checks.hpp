@@ -1,9 +1,12 @@
 #pragma once
 // Checks on closed triangle meshes shared by the msd tests (templates, fitted primitives, Ŝ).
 #include <medax/geometry.hpp>
+#include <medax/services/closest_point.hpp>
+#include <medax/surface.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -60,6 +63,19 @@ inline double winding(const std::vector<Vec3>& v, const std::vector<Tri>& faces,
     total += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
   }
   return total / (4 * M_PI);
+}
+
+/// Mean distance from `points` to `mesh`.
+inline double mean_distance(const std::vector<Vec3>& points, const SurfaceMesh& mesh) {
+  const std::vector<double> d = services::SurfaceDistance(mesh).distances(points);
+  double sum = 0;
+  for (double x : d) sum += x;
+  return sum / static_cast<double>(d.size());
+}
+
+/// MSD's ε̄ = max(ε̄¹, ε̄²) over vertices: S's to Ŝ and Ŝ's to S.
+inline double two_sided_error(const SurfaceMesh& surface, const SurfaceMesh& rebuilt) {
+  return std::max(mean_distance(surface.vertices, rebuilt), mean_distance(rebuilt.vertices, surface));
 }
 
 }  // namespace medax::msd::checks

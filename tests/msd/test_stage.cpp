@@ -24,6 +24,7 @@
 using namespace medax;
 using namespace medax::msd;
 using medax::msd::checks::check_closed_manifold;
+using medax::msd::checks::two_sided_error;
 
 namespace {
 
@@ -64,18 +65,6 @@ MsdRun run_msd(const ParamSet& params) {
   stage.prepare(run.scene);
   stage.run(run.scene, *run.ctx);
   return run;
-}
-
-double mean_distance(const std::vector<Vec3>& points, const SurfaceMesh& mesh) {
-  const std::vector<double> d = services::SurfaceDistance(mesh).distances(points);
-  double sum = 0;
-  for (double x : d) sum += x;
-  return sum / static_cast<double>(d.size());
-}
-
-/// MSD's ε̄ = max(ε̄¹, ε̄²) over vertices: S's to Ŝ and Ŝ's to S.
-double two_sided_error(const SurfaceMesh& surface, const SurfaceMesh& rebuilt) {
-  return std::max(mean_distance(surface.vertices, rebuilt), mean_distance(rebuilt.vertices, surface));
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include <medax/io.hpp>
 #include <medax/services/closest_point.hpp>
+#include <medax/services/sampling.hpp>
 
 #include "../support/test_paths.hpp"
 
@@ -27,15 +28,6 @@ using namespace medax::msd;
 using medax::msd::checks::check_closed_manifold;
 
 namespace {
-
-double area(const SurfaceMesh& mesh) {
-  double total = 0;
-  for (const Tri& f : mesh.faces) {
-    const Vec3& a = mesh.vertices[f[0]];
-    total += 0.5 * (mesh.vertices[f[1]] - a).cross(mesh.vertices[f[2]] - a).norm();
-  }
-  return total;
-}
 
 /// The unit sphere of tests/data (642 vertices, radius 1 to 1e-6), moved to `centre`.
 SurfaceMesh unit_sphere(const Vec3& centre) {
@@ -81,14 +73,6 @@ SurfaceMesh box_mesh(const Vec3& low, const Vec3& high, double step) {
   return mesh;
 }
 
-/// Mean distance from `points` to `mesh`.
-double mean_distance(const std::vector<Vec3>& points, const SurfaceMesh& mesh) {
-  const std::vector<double> d = services::SurfaceDistance(mesh).distances(points);
-  double sum = 0;
-  for (double x : d) sum += x;
-  return sum / static_cast<double>(d.size());
-}
-
 bool strictly_inside(const Vec3& x, const Vec3& low, const Vec3& high) {
   return (x.array() > low.array() + 1e-12).all() && (x.array() < high.array() - 1e-12).all();
 }
@@ -116,8 +100,8 @@ TEST_CASE("msd union Ŝ of two overlapping spheres is their analytic union withi
   CHECK(deepest < 5e-3);
   // Area: two spheres minus a cap of height 1/2 each, 2·(4π − π) = 6π, scaled by the mesh's own
   // area deficit against 4π.
-  const double deficit = area(one) / (4 * M_PI);
-  CHECK(area(mesh) == Approx(6 * M_PI * deficit).epsilon(5e-3));
+  const double deficit = services::surface_area(one) / (4 * M_PI);
+  CHECK(services::surface_area(mesh) == Approx(6 * M_PI * deficit).epsilon(5e-3));
 }
 
 TEST_CASE("msd union Ŝ of two boxes on one grid is their union exactly") {
@@ -125,7 +109,7 @@ TEST_CASE("msd union Ŝ of two boxes on one grid is their union exactly") {
   const SurfaceMesh mesh =
       reconstruct_union({box_mesh(low_a, high_a, 0.125), box_mesh(low_b, high_b, 0.125)}, Similarity{}).surface;
   // Area 6 + 2.5 − 0.25 (A's face inside B) − 1.25 (B's faces inside A).
-  CHECK(area(mesh) == Approx(7.0).epsilon(1e-12));
+  CHECK(services::surface_area(mesh) == Approx(7.0).epsilon(1e-12));
   std::size_t inside = 0;
   for (const Vec3& x : mesh.vertices) inside += strictly_inside(x, low_a, high_a) || strictly_inside(x, low_b, high_b);
   CHECK(inside == 0);
@@ -136,12 +120,12 @@ TEST_CASE("msd union Ŝ keeps triangles two solids share once and drops faces wh
   SECTION("a box inside another sharing five faces' triangles: the outer box, each triangle once") {
     const SurfaceMesh mesh = reconstruct_union({a, box_mesh({0, 0, 0}, {0.5, 1, 1}, 0.25)}, Similarity{}).surface;
     CHECK(mesh.faces.size() == a.faces.size());
-    CHECK(area(mesh) == Approx(6.0).epsilon(1e-12));
+    CHECK(services::surface_area(mesh) == Approx(6.0).epsilon(1e-12));
     check_closed_manifold(mesh.faces, mesh.vertices.size());
   }
   SECTION("two boxes face to face: the interface goes, the 2×1×1 box remains, closed") {
     const SurfaceMesh mesh = reconstruct_union({a, box_mesh({1, 0, 0}, {2, 1, 1}, 0.25)}, Similarity{}).surface;
-    CHECK(area(mesh) == Approx(10.0).epsilon(1e-12));
+    CHECK(services::surface_area(mesh) == Approx(10.0).epsilon(1e-12));
     check_closed_manifold(mesh.faces, mesh.vertices.size());
   }
   CHECK_THROWS_WITH(reconstruct_union({SurfaceMesh{}}, Similarity{}), Catch::Contains("no primitive surface"));
@@ -156,7 +140,7 @@ TEST_CASE("msd union Ŝ keeps a surface within the tolerance of another, and dro
   CHECK(reconstruct_union({inner, outer}, Similarity{}).surface.faces.size() == 2 * inner.faces.size());
   const SurfaceMesh strict = reconstruct_union({inner, outer}, Similarity{}, UnionOptions{1e-9}).surface;
   CHECK(strict.faces.size() == outer.faces.size());
-  CHECK(area(strict) == Approx(area(outer)).epsilon(1e-12));
+  CHECK(services::surface_area(strict) == Approx(services::surface_area(outer)).epsilon(1e-12));
 }
 
 TEST_CASE("msd union Ŝ is the same surface with 1 or 2 threads") {
@@ -184,11 +168,9 @@ TEST_CASE("msd union Ŝ of refined primitives covering all of S holds every vert
   for (const RefinedPrimitive& r : refined) CHECK(r.refined);
   const SurfaceMesh fitted_union = reconstruct_union(fitted_surfaces(primitives), Similarity{}).surface;
   const SurfaceMesh refined_union = reconstruct_union(refined_surfaces(refined), Similarity{}).surface;
-  const double eps1 = mean_distance(sphere.vertices, refined_union);
+  const double eps1 = checks::mean_distance(sphere.vertices, refined_union);
   CHECK(eps1 < 1e-15);  // ε̄¹ = 0 to rounding
-  const auto eps = [&](const SurfaceMesh& rebuilt) {
-    return std::max(mean_distance(sphere.vertices, rebuilt), mean_distance(rebuilt.vertices, sphere));
-  };
+  const auto eps = [&](const SurfaceMesh& rebuilt) { return checks::two_sided_error(sphere, rebuilt); };
   CHECK(eps(fitted_union) > 1e-4);  // the fitted T_P cut corners between S's vertices
   CHECK(eps(refined_union) <= eps(fitted_union));
   // The two refined copies of S's triangles are one: Ŝ is S, closed.

@@ -10,6 +10,7 @@
 
 #include <deque>
 #include <map>
+#include <optional>
 #include <unordered_set>
 #include <vector>
 
@@ -60,6 +61,23 @@ class Engine {
                      bool test_coverage = true);
   /// Nodes (cells) of a path.
   std::vector<CellId> path_nodes(const HalfPath& path) const;
+  /// The marks of one carving: the path's cells, the flooded region, the vertices seen.
+  struct CarveStamps {
+    std::uint32_t path = 0, region = 0, vertex = 0;
+  };
+  struct FloodRules {
+    bool stop_at_labels;
+    bool test_coverage;
+  };
+  std::vector<Ball> mark_path(const std::vector<CellId>& path, CarveStamps& stamps);
+  /// Floods `region` from the seeds; returns why it stopped early, or nothing when the whole
+  /// region is covered and separated from the labelled faces.
+  std::optional<CarveOutcome> flood_region(const std::vector<CellId>& seeds, const std::vector<Ball>& balls,
+                                           const CarveStamps& stamps, const FloodRules& rules,
+                                           std::vector<CellId>& region);
+  void reattach_witnesses(const std::vector<CellId>& path, const std::vector<Ball>& balls,
+                          const std::vector<CellId>& region, const std::vector<Index>& verts);
+  void set_region_solid(const std::vector<CellId>& region, bool solid);
 
   // --- propagation.cpp ----------------------------------------------------------------------
   /// One pass: labels from a fresh seed per component, carving insignificant sheets. Returns
@@ -83,6 +101,17 @@ class Engine {
   // --- problematic.cpp ----------------------------------------------------------------------
   void split_problematic();
   bool problematic(const Facet& f) const;
+  std::vector<Facet> problematic_edges() const;
+  /// Relabels the sheets `labels` (each may fall apart after forcing edges): one scan of the faces.
+  void relabel_sheets(const std::vector<int>& labels);
+  /// Extends chains of problematic edges from their free ends to their sheet's boundary (rounds
+  /// until no progress); returns the problematic edges left.
+  std::vector<Facet> cut_chains(std::vector<Facet> found);
+  /// Forces the shortest path (Dijkstra on centre distances over the sheet's regular edges)
+  /// from `start` to the nearest boundary node of sheet `label`; false when none is reached.
+  bool cut_to_sheet_boundary(CellId start, int label);
+  /// Splits the fins of the remaining problematic edges (rounds); returns those left.
+  std::vector<Facet> split_fins(std::vector<Facet> found);
   /// Per-face scratch of split_fin, reused across calls (stamped, so nothing is cleared).
   struct FinScratch {
     std::vector<std::uint32_t> stamp;
@@ -92,9 +121,16 @@ class Engine {
     std::uint32_t current = 0;
     std::vector<CellId> ring;
     std::vector<Facet> facets;
+    /// Sizes the scratch for the complex and starts a new call's stamp.
+    void prepare(std::size_t num_edges);
   };
   /// Cuts the fin of a problematic edge off its sheet (forced edges, a new label).
   void split_fin(const Facet& edge, FinScratch& scratch);
+  /// The faces the fin's front reaches before the other two faces' fronts.
+  std::vector<EdgeId> fin_region(const EdgeId faces[3], int fin, FinScratch& scratch) const;
+  const Vec3& face_centroid(EdgeId f, FinScratch& scratch) const;
+  /// The other face across a regular edge of the sheet, or kNoId.
+  EdgeId face_across(const Facet& t, EdgeId f) const;
 
   // --- state --------------------------------------------------------------------------------
   Dual& d;

@@ -76,7 +76,6 @@ class Validator {
   /// Validates a stage entry (map with plugin/id/params, or a bare plugin name for nested
   /// stages) and creates its configured instance. Returns nullopt when invalid.
   std::optional<StageConfig> stage(const YAML::Node& node, std::optional<Role> required_role) {
-    StageConfig config;
     if (!node.IsMap() && !(node.IsScalar() && required_role)) {
       check_.error(node, "a stage is a map with `plugin:` (and optional `id:`, `params:`)");
       return std::nullopt;
@@ -84,69 +83,94 @@ class Validator {
     // Copy-constructed, not assigned: yaml-cpp throws when a missing key's node is assigned.
     const YAML::Node plugin_node = node.IsMap() ? node["plugin"] : node;
     const YAML::Node params_node = node.IsMap() ? node["params"] : YAML::Node();
+    StageConfig config;
     if (node.IsMap()) {
       check_.unknown_keys(node, kStageKeys, "stage");
-      if (node["id"]) {
+      if (node["id"])
         if (auto id = scalar(check_, node["id"], "`id`")) config.id = *id;
-      }
     }
+    const RegisteredStage* registered = plugin_of(node, plugin_node, required_role);
+    if (!registered) return std::nullopt;
+    const StageInfo& info = registered->info();
+    config.plugin = info.name;
+    config.role = info.role;
+    if (config.id.empty()) config.id = info.name;
+    const bool names_ok = params_declared(params_node, info);
+    if (!bind_params(node, params_node, info, config.params) || !names_ok) return std::nullopt;
+    return instantiate(*registered, plugin_node, params_node, std::move(config));
+  }
+
+ private:
+  /// The registered plugin a stage names, of the required role; nullptr (reported) otherwise.
+  const RegisteredStage* plugin_of(const YAML::Node& node, const YAML::Node& plugin_node,
+                                   std::optional<Role> required_role) {
     if (!plugin_node) {
       check_.error(node, "this stage has no `plugin:`; add `plugin: NAME` (see `medax plugins`)");
-      return std::nullopt;
+      return nullptr;
     }
     const auto name = scalar(check_, plugin_node, "`plugin`");
-    if (!name) return std::nullopt;
+    if (!name) return nullptr;
     const RegisteredStage* registered = registry_.find(*name);
     if (!registered) {
       check_.error(plugin_node, fmt::format("unknown plugin '{}'{}; `medax plugins` lists them", *name,
                                             detail::did_you_mean(registry_.suggest(*name))));
-      return std::nullopt;
+      return nullptr;
     }
-    const StageInfo& info = registered->info();
-    if (required_role && info.role != *required_role) {
-      check_.error(plugin_node, fmt::format("'{}' is {} but this parameter needs {}", *name, a_stage(info.role),
+    const Role role = registered->info().role;
+    if (required_role && role != *required_role) {
+      check_.error(plugin_node, fmt::format("'{}' is {} but this parameter needs {}", *name, a_stage(role),
                                             a_stage(*required_role)));
-      return std::nullopt;
+      return nullptr;
     }
-    config.plugin = *name;
-    config.role = info.role;
-    if (config.id.empty()) config.id = *name;
+    return registered;
+  }
+
+  /// True when `params:` is absent, or a map whose every key the plugin declares.
+  bool params_declared(const YAML::Node& params_node, const StageInfo& info) {
+    if (!params_node || params_node.IsNull()) return true;
+    if (!params_node.IsMap()) {
+      check_.error(params_node, "`params:` must be a map of NAME: VALUE");
+      return false;
+    }
+    std::vector<std::string> declared;
+    for (const ParamSpec& spec : info.params) declared.push_back(spec.name);
     bool ok = true;
-    if (params_node && !params_node.IsNull()) {
-      if (!params_node.IsMap()) {
-        check_.error(params_node, "`params:` must be a map of NAME: VALUE");
-        ok = false;
-      } else {
-        std::vector<std::string> declared;
-        for (const ParamSpec& spec : info.params) declared.push_back(spec.name);
-        for (const auto& kv : params_node) {
-          const std::string key = kv.first.Scalar();
-          if (std::find(declared.begin(), declared.end(), key) == declared.end()) {
-            check_.error(kv.first, fmt::format("'{}' has no parameter '{}'{}; `medax describe {}` lists its parameters",
-                                               *name, key, detail::did_you_mean(detail::closest_names(key, declared)),
-                                               *name));
-            ok = false;
-          }
-        }
-      }
+    for (const auto& kv : params_node) {
+      const std::string key = kv.first.Scalar();
+      if (std::find(declared.begin(), declared.end(), key) != declared.end()) continue;
+      check_.error(kv.first, fmt::format("'{}' has no parameter '{}'{}; `medax describe {}` lists its parameters",
+                                         info.name, key, detail::did_you_mean(detail::closest_names(key, declared)),
+                                         info.name));
+      ok = false;
     }
+    return ok;
+  }
+
+  /// Every declared parameter: its given value, parsed, or its default.
+  bool bind_params(const YAML::Node& node, const YAML::Node& params_node, const StageInfo& info, ParamSet& params) {
+    bool ok = true;
     for (const ParamSpec& spec : info.params) {
       // An absent parameter is an undefined node (a default-constructed Node counts as given).
       const YAML::Node value = params_node && params_node.IsMap() ? params_node[spec.name]
                                                                   : YAML::Node(YAML::NodeType::Undefined);
-      std::optional<ParamValue> v = value ? parse(spec, value, *name) : default_of(spec, node);
-      if (v) config.params.set(spec.name, std::move(*v));
+      std::optional<ParamValue> v = value ? parse(spec, value, info.name) : default_of(spec, node);
+      if (v) params.set(spec.name, std::move(*v));
       else ok = false;
     }
-    if (!ok) return std::nullopt;
-    config.instance = std::shared_ptr<Stage>(registered->entry.create());
+    return ok;
+  }
+
+  /// Creates and configures the stage; its own parameter check's complaint is reported.
+  std::optional<StageConfig> instantiate(const RegisteredStage& registered, const YAML::Node& plugin_node,
+                                         const YAML::Node& params_node, StageConfig config) {
+    config.instance = std::shared_ptr<Stage>(registered.entry.create());
     config.instance->set_id(config.id);
     config.instance->configure(config.params);
     try {
       config.instance->check_params();
     } catch (const std::exception& e) {
       check_.error(params_node && params_node.IsMap() ? params_node : plugin_node,
-                   fmt::format("'{}': {}", *name, e.what()));
+                   fmt::format("'{}': {}", config.plugin, e.what()));
       return std::nullopt;
     }
     return config;
@@ -402,8 +426,7 @@ bool file_exists(const fs::path& path) {
   return fs::exists(path, ignored);
 }
 
-PipelineConfig load_checked(const fs::path& file, const Registry& registry, const Overrides& overrides) {
-  detail::Diagnostics check(file.string());
+YAML::Node read_root(const fs::path& file) {
   if (!file_exists(file)) throw PipelineError({Diagnostic{file.string(), 0, 0, "no such pipeline file"}});
   YAML::Node root;
   try {
@@ -414,14 +437,11 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
   }
   if (!root.IsMap())
     throw PipelineError({Diagnostic{file.string(), 1, 1, "a pipeline is a YAML map with `input:` and `stages:`"}});
+  return root;
+}
 
-  check.duplicate_keys(root);  // before the overrides add nodes
-  apply_overrides(root, overrides, check);
-  check.unknown_keys(root, kTopKeys, "pipeline");
-
-  PipelineConfig config;
-  config.file = fs::absolute(file).lexically_normal();
-  const fs::path base = config.file.parent_path();
+/// `name` (else the file's stem), `medax` (the format version) and `seed`.
+void load_header(detail::Diagnostics& check, const YAML::Node& root, const fs::path& file, PipelineConfig& config) {
   config.name = file.stem().string();
   if (!root["name"] && name_problem(config.name))  // a file named `...yaml` has the stem `..`
     check.error_at(file.string(), fmt::format("the file's name '{}' cannot name a run folder; add `name: NAME` "
@@ -446,7 +466,13 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
     if (!s || *s < 0) check.error(root["seed"], "`seed` must be a whole number >= 0");
     else config.seed = static_cast<std::uint64_t>(*s);
   }
+}
 
+/// The input mesh (`--input` wins over `input:`) and the optional `medial_input`, relative to
+/// the pipeline file.
+void load_inputs(detail::Diagnostics& check, const YAML::Node& root, const fs::path& file, const Overrides& overrides,
+                 PipelineConfig& config) {
+  const fs::path base = config.file.parent_path();
   if (!overrides.input.empty()) {
     config.input = fs::absolute(overrides.input).lexically_normal();
     if (!file_exists(config.input)) check.error_at("--input", fmt::format("input file {} not found", config.input.string()));
@@ -467,54 +493,74 @@ PipelineConfig load_checked(const fs::path& file, const Registry& registry, cons
         check.error(root["medial_input"], fmt::format("medial input {} not found", config.medial_input.string()));
     }
   }
+}
 
+/// False for a stage written with `enabled: false` (or --set STAGE.enabled=false).
+bool stage_enabled(detail::Diagnostics& check, const YAML::Node& node) {
+  if (!node.IsMap() || !node["enabled"]) return true;
+  const auto enabled = parse_bool(node["enabled"].Scalar());
+  if (!enabled) check.error(node["enabled"], "`enabled` is true or false");
+  return enabled.value_or(true);
+}
+
+void load_stages(detail::Diagnostics& check, const YAML::Node& root, const Registry& registry, PipelineConfig& config) {
   const YAML::Node stages = root["stages"];
   if (!stages || !stages.IsSequence() || stages.size() == 0) {
     check.error(stages ? stages : root, "`stages:` must be a non-empty list of stages");
-  } else {
-    Validator validator(check, registry);
-    StageOrder order(config.medial_input, check);
-    std::set<std::string> ids;
-    for (const YAML::Node& node : stages) {
-      if (node.IsMap() && node["enabled"]) {  // `enabled: false` (or --set STAGE.enabled=false) skips it
-        const auto enabled = parse_bool(node["enabled"].Scalar());
-        if (!enabled) check.error(node["enabled"], "`enabled` is true or false");
-        if (!enabled.value_or(true)) continue;
-      }
-      auto stage = validator.stage(node, std::nullopt);
-      if (!stage) {
-        // An invalid extraction stage still provides the complex for the role check of later
-        // stages, so one mistake is not reported twice.
-        if (node.IsMap() && node["plugin"] && node["plugin"].IsScalar())
-          if (const RegisteredStage* s = registry.find(node["plugin"].Scalar()))
-            if (s->info().role == Role::Extraction) order.assume_extraction(s->info().name);
-        continue;
-      }
-      if (!ids.insert(stage->id).second)
-        check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
-      order.check(node, *stage);
-      config.stages.push_back(std::move(*stage));
-    }
+    return;
   }
-
-  if (const YAML::Node outputs = root["outputs"]) {
-    if (!outputs.IsMap()) {
-      check.error(outputs, "`outputs:` is a map like {medial: [ma, ply], surface: [off]}");
-    } else {
-      check.unknown_keys(outputs, kOutputKeys, "outputs");
-      if (outputs["medial"]) config.outputs.medial = formats(check, outputs["medial"], kMedialFormats, "medial");
-      if (outputs["surface"]) config.outputs.surface = formats(check, outputs["surface"], kSurfaceFormats, "surface");
-      if (outputs["frame"]) {
-        const std::string frame = outputs["frame"].Scalar();
-        if (frame != "input" && frame != "working")
-          check.error(outputs["frame"], "`frame` is `input` (the input file's coordinates) or `working`");
-        config.outputs.input_frame = frame == "input";
-      }
+  Validator validator(check, registry);
+  StageOrder order(config.medial_input, check);
+  std::set<std::string> ids;
+  for (const YAML::Node& node : stages) {
+    if (!stage_enabled(check, node)) continue;
+    auto stage = validator.stage(node, std::nullopt);
+    if (!stage) {
+      // An invalid extraction stage still provides the complex for the role check of later
+      // stages, so one mistake is not reported twice.
+      if (node.IsMap() && node["plugin"] && node["plugin"].IsScalar())
+        if (const RegisteredStage* s = registry.find(node["plugin"].Scalar()))
+          if (s->info().role == Role::Extraction) order.assume_extraction(s->info().name);
+      continue;
     }
-  } else {
+    if (!ids.insert(stage->id).second)
+      check.error(node, fmt::format("two stages have the id '{}'; give one of them `id: OTHER`", stage->id));
+    order.check(node, *stage);
+    config.stages.push_back(std::move(*stage));
+  }
+}
+
+void load_outputs(detail::Diagnostics& check, const YAML::Node& root, PipelineConfig& config) {
+  const YAML::Node outputs = root["outputs"];
+  if (!outputs) {
     config.outputs.medial = {"ma", "ply"};
+    return;
   }
+  if (!outputs.IsMap()) return check.error(outputs, "`outputs:` is a map like {medial: [ma, ply], surface: [off]}");
+  check.unknown_keys(outputs, kOutputKeys, "outputs");
+  if (outputs["medial"]) config.outputs.medial = formats(check, outputs["medial"], kMedialFormats, "medial");
+  if (outputs["surface"]) config.outputs.surface = formats(check, outputs["surface"], kSurfaceFormats, "surface");
+  if (outputs["frame"]) {
+    const std::string frame = outputs["frame"].Scalar();
+    if (frame != "input" && frame != "working")
+      check.error(outputs["frame"], "`frame` is `input` (the input file's coordinates) or `working`");
+    config.outputs.input_frame = frame == "input";
+  }
+}
 
+PipelineConfig load_checked(const fs::path& file, const Registry& registry, const Overrides& overrides) {
+  detail::Diagnostics check(file.string());
+  YAML::Node root = read_root(file);
+  check.duplicate_keys(root);  // before the overrides add nodes
+  apply_overrides(root, overrides, check);
+  check.unknown_keys(root, kTopKeys, "pipeline");
+
+  PipelineConfig config;
+  config.file = fs::absolute(file).lexically_normal();
+  load_header(check, root, file, config);
+  load_inputs(check, root, file, overrides, config);
+  load_stages(check, root, registry, config);
+  load_outputs(check, root, config);
   if (!check.ok()) throw PipelineError(check.take());
   return config;
 }

@@ -271,6 +271,82 @@ bool is_sweep(const fs::path& pipeline) {
   }
 }
 
+namespace {
+
+void load_inputs(const YAML::Node& root, const fs::path& base, SweepConfig& config, detail::Diagnostics& diag) {
+  if (const YAML::Node inputs = root["inputs"]) {
+    if (inputs.IsSequence()) for (const YAML::Node& n : inputs) add_inputs(n, base, config, diag);
+    else add_inputs(inputs, base, config, diag);
+    if (root["input"]) diag.error(root["input"], "give either `input:` or `inputs:`, not both");
+  } else if (root["input"] && root["input"].IsScalar()) {
+    config.inputs.push_back(absolute_from(base, root["input"].Scalar()));
+  } else {
+    diag.error(root, "an experiment needs `input:` or `inputs:`");
+  }
+}
+
+/// The axes of `sweep:`; no STAGE.PARAM may be set by two of them.
+void load_axes(const YAML::Node& sweep, SweepConfig& config, detail::Diagnostics& diag) {
+  if (!sweep.IsMap())
+    return diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin, or a name) to a list of values");
+  std::map<std::string, std::string> axis_setting;  // STAGE.PARAM -> the sweep key that sets it
+  for (const auto& kv : sweep) {
+    std::optional<SweepAxis> axis = kv.first.Scalar().find('.') == std::string::npos
+                                        ? named_axis(kv.first, kv.second, diag)
+                                        : plain_axis(kv.first.Scalar(), kv.second);
+    if (!axis) continue;
+    if (axis->values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", axis->key));
+    for (const std::string& key : keys_set_by(*axis))
+      if (const auto [it, fresh] = axis_setting.emplace(key, axis->key); !fresh && it->second != axis->key)
+        diag.error(kv.first, fmt::format("sweep key '{}' sets {}, which '{}' sets too: the job's folder and "
+                                         "results would name one value while the other runs; set it in one place",
+                                         axis->key, key, it->second));
+    config.axes.push_back(std::move(*axis));
+  }
+  check_variable_uses(sweep, config, diag);
+}
+
+std::optional<PlotSpec> plot_spec(const YAML::Node& p, detail::Diagnostics& diag) {
+  if (!p.IsMap() || !p["x"] || !p["y"]) {
+    diag.error(p, "a plot is {x: COLUMN, y: COLUMN, series: COLUMN, log_x: bool, log_y: bool, style: lines|points}");
+    return std::nullopt;
+  }
+  PlotSpec spec{p["x"].Scalar(), p["y"].Scalar(), p["series"] ? p["series"].Scalar() : "input"};
+  spec.log_x = p["log_x"] && p["log_x"].as<bool>(false);
+  spec.log_y = p["log_y"] && p["log_y"].as<bool>(false);
+  if (p["style"]) {
+    if (p["style"].Scalar() != "points" && p["style"].Scalar() != "lines")
+      diag.error(p["style"], "a plot's `style` is `lines` (curves through the points) or `points` (a scatter)");
+    spec.points_only = p["style"].Scalar() == "points";
+  }
+  return spec;
+}
+
+void load_plots(const YAML::Node& plots, SweepConfig& config, detail::Diagnostics& diag) {
+  if (!plots.IsSequence()) return diag.error(plots, "`plots:` is a list of {x: COLUMN, y: COLUMN}");
+  for (const YAML::Node& p : plots)
+    if (auto spec = plot_spec(p, diag)) config.plots.push_back(std::move(*spec));
+}
+
+void load_limits(const YAML::Node& limits, SweepLimits& out, detail::Diagnostics& diag) {
+  if (!limits.IsMap())
+    return diag.error(limits, "`limits:` is {timeout: SECONDS, memory_mib: MIB, interrupt_grace: SECONDS}");
+  const auto non_negative = [&](const char* key, double& value) {
+    if (!limits[key]) return;
+    try {
+      value = limits[key].as<double>();
+      if (value < 0) diag.error(limits[key], fmt::format("`{}` must be >= 0", key));
+    } catch (const YAML::Exception&) {
+      diag.error(limits[key], fmt::format("`{}` must be a number", key));
+    }
+  };
+  non_negative("timeout", out.timeout_seconds);
+  non_negative("memory_mib", out.memory_mib);
+  non_negative("interrupt_grace", out.interrupt_grace_seconds);
+}
+
+}  // namespace
+
 SweepConfig load_sweep(const fs::path& pipeline) {
   detail::Diagnostics diag(pipeline.string());
   YAML::Node root;
@@ -282,84 +358,16 @@ SweepConfig load_sweep(const fs::path& pipeline) {
   diag.duplicate_keys(root);
   SweepConfig config;
   config.file = fs::absolute(pipeline).lexically_normal();
-  const fs::path base = config.file.parent_path();
   config.name = root["name"] && root["name"].IsScalar() ? root["name"].Scalar() : pipeline.stem().string();
-
-  if (const YAML::Node inputs = root["inputs"]) {
-    if (inputs.IsSequence()) for (const YAML::Node& n : inputs) add_inputs(n, base, config, diag);
-    else add_inputs(inputs, base, config, diag);
-    if (root["input"]) diag.error(root["input"], "give either `input:` or `inputs:`, not both");
-  } else if (root["input"] && root["input"].IsScalar()) {
-    config.inputs.push_back(absolute_from(base, root["input"].Scalar()));
-  } else {
-    diag.error(root, "an experiment needs `input:` or `inputs:`");
-  }
-
-  if (const YAML::Node sweep = root["sweep"]) {
-    if (!sweep.IsMap()) diag.error(sweep, "`sweep:` maps STAGE.PARAM (or STAGE.plugin, or a name) to a list of values");
-    else {
-      std::map<std::string, std::string> axis_setting;  // STAGE.PARAM -> the sweep key that sets it
-      for (const auto& kv : sweep) {
-        std::optional<SweepAxis> axis = kv.first.Scalar().find('.') == std::string::npos
-                                            ? named_axis(kv.first, kv.second, diag)
-                                            : plain_axis(kv.first.Scalar(), kv.second);
-        if (!axis) continue;
-        if (axis->values.empty()) diag.error(kv.second, fmt::format("sweep key '{}' has no values", axis->key));
-        for (const std::string& key : keys_set_by(*axis))
-          if (const auto [it, fresh] = axis_setting.emplace(key, axis->key); !fresh && it->second != axis->key)
-            diag.error(kv.first, fmt::format("sweep key '{}' sets {}, which '{}' sets too: the job's folder and "
-                                             "results would name one value while the other runs; set it in one place",
-                                             axis->key, key, it->second));
-        config.axes.push_back(std::move(*axis));
-      }
-      check_variable_uses(sweep, config, diag);
-    }
-  }
-
-  if (const YAML::Node plots = root["plots"]) {
-    if (!plots.IsSequence()) diag.error(plots, "`plots:` is a list of {x: COLUMN, y: COLUMN}");
-    else
-      for (const YAML::Node& p : plots) {
-        if (!p.IsMap() || !p["x"] || !p["y"]) {
-          diag.error(p, "a plot is {x: COLUMN, y: COLUMN, series: COLUMN, log_x: bool, log_y: bool, style: lines|points}");
-          continue;
-        }
-        PlotSpec spec{p["x"].Scalar(), p["y"].Scalar(), p["series"] ? p["series"].Scalar() : "input"};
-        spec.log_x = p["log_x"] && p["log_x"].as<bool>(false);
-        spec.log_y = p["log_y"] && p["log_y"].as<bool>(false);
-        if (p["style"]) {
-          if (p["style"].Scalar() != "points" && p["style"].Scalar() != "lines")
-            diag.error(p["style"], "a plot's `style` is `lines` (curves through the points) or `points` (a scatter)");
-          spec.points_only = p["style"].Scalar() == "points";
-        }
-        config.plots.push_back(spec);
-      }
-  }
-
+  load_inputs(root, config.file.parent_path(), config, diag);
+  if (const YAML::Node sweep = root["sweep"]) load_axes(sweep, config, diag);
+  if (const YAML::Node plots = root["plots"]) load_plots(plots, config, diag);
   if (const YAML::Node table = root["table"]) {
     if (!table.IsSequence()) diag.error(table, "`table:` is the list of results.csv columns results.md shows");
     else
       for (const YAML::Node& c : table) config.table_columns.push_back(c.Scalar());
   }
-
-  if (const YAML::Node limits = root["limits"]) {
-    const auto positive = [&](const char* key, double& out) {
-      if (!limits[key]) return;
-      try {
-        out = limits[key].as<double>();
-        if (out < 0) diag.error(limits[key], fmt::format("`{}` must be >= 0", key));
-      } catch (const YAML::Exception&) {
-        diag.error(limits[key], fmt::format("`{}` must be a number", key));
-      }
-    };
-    if (!limits.IsMap())
-      diag.error(limits, "`limits:` is {timeout: SECONDS, memory_mib: MIB, interrupt_grace: SECONDS}");
-    else {
-      positive("timeout", config.limits.timeout_seconds);
-      positive("memory_mib", config.limits.memory_mib);
-      positive("interrupt_grace", config.limits.interrupt_grace_seconds);
-    }
-  }
+  if (const YAML::Node limits = root["limits"]) load_limits(limits, config.limits, diag);
   diag.throw_if_any();
   return config;
 }

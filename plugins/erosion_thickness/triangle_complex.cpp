@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -82,6 +83,92 @@ TriangleComplex build_triangle_complex(std::vector<Vec3> points, std::vector<dou
   return cx;
 }
 
+namespace {
+
+/// The link of one vertex, rebuilt for each vertex in reused buffers. A triangle at the vertex
+/// has two edges there (its link sides); triangles sharing a manifold edge (degree 2) are in
+/// one sector; the link nodes H_v are the edges of degree ≠ 2, and each sector is a chain
+/// between two of them (or a closed chain: a self-loop on a node of its own).
+struct VertexLink {
+  struct Side {
+    Index edge;
+    int local;  // the triangle's position among the vertex's triangles
+  };
+  std::vector<Side> sides;
+  std::vector<int> sector_of_local, root_to_sector;
+  std::vector<int> ends_count;
+  std::vector<std::array<int, 2>> ends;
+  std::vector<Index> h_edge_ids;
+};
+
+int corner_of(const Tri& f, Index v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
+
+/// The link sides of v's `deg` triangles, sorted by edge (then triangle).
+void gather_sides(const TriangleComplex& cx, Index v, VertexLink& link) {
+  const Index begin = cx.vert_tri_begin[v], deg = cx.vert_tri_begin[v + 1] - begin;
+  link.sides.clear();
+  for (Index i = 0; i < deg; ++i) {
+    const Index t = cx.vert_tris[begin + i];
+    const int j = corner_of(cx.triangles[t], v);
+    link.sides.push_back({cx.tri_edges[t][j], static_cast<int>(i)});
+    link.sides.push_back({cx.tri_edges[t][(j + 2) % 3], static_cast<int>(i)});
+  }
+  std::sort(link.sides.begin(), link.sides.end(), [](const VertexLink::Side& a, const VertexLink::Side& b) {
+    return a.edge < b.edge || (a.edge == b.edge && a.local < b.local);
+  });
+}
+
+/// Numbers the sectors in order of their first triangle; returns their count.
+int number_sectors(const TriangleComplex& cx, Index v, Index deg, VertexLink& link) {
+  UnionFind uf(deg);
+  for (std::size_t i = 0; i + 1 < link.sides.size(); ++i)
+    if (link.sides[i].edge == link.sides[i + 1].edge && cx.edge_degree(link.sides[i].edge) == 2)
+      uf.unite(static_cast<Index>(link.sides[i].local), static_cast<Index>(link.sides[i + 1].local));
+  link.root_to_sector.assign(deg, -1);
+  link.sector_of_local.assign(deg, -1);
+  int ns = 0;
+  for (Index i = 0; i < deg; ++i) {
+    const Index r = uf.find(i);
+    if (link.root_to_sector[r] < 0) link.root_to_sector[r] = ns++;
+    link.sector_of_local[i] = link.root_to_sector[r];
+  }
+  if (ns > 0xfffe) throw std::runtime_error(fmt::format("vertex {} has too many sectors", v));
+  return ns;
+}
+
+/// The H_v nodes (link nodes of degree ≠ 2, in edge order) and each sector's two ends; returns
+/// the node count.
+int link_nodes(const TriangleComplex& cx, Index v, int ns, VertexLink& link) {
+  link.h_edge_ids.clear();
+  link.ends_count.assign(ns, 0);
+  link.ends.assign(ns, {-1, -1});
+  for (const VertexLink::Side& side : link.sides) {
+    if (cx.edge_degree(side.edge) == 2) continue;
+    if (link.h_edge_ids.empty() || link.h_edge_ids.back() != side.edge) link.h_edge_ids.push_back(side.edge);
+    const int node = static_cast<int>(link.h_edge_ids.size()) - 1;
+    const int s = link.sector_of_local[side.local];
+    if (link.ends_count[s] < 2) link.ends[s][link.ends_count[s]] = node;
+    ++link.ends_count[s];
+  }
+  int nh = static_cast<int>(link.h_edge_ids.size());
+  for (int s = 0; s < ns; ++s) {
+    if (link.ends_count[s] == 0) link.ends[s] = {nh, nh}, ++nh;  // closed chain: a self-loop on its own node
+    else if (link.ends_count[s] == 1) link.ends[s][1] = link.ends[s][0];  // cannot happen for chains; be safe
+  }
+  if (nh > 0xfffe) throw std::runtime_error(fmt::format("vertex {} has too many link nodes", v));
+  return nh;
+}
+
+/// ∂G: v is on the boundary when H_v (nodes, sectors as edges) is a forest.
+bool link_is_forest(const VertexLink& link, int ns, int nh) {
+  UnionFind huf(static_cast<std::size_t>(nh));
+  for (int s = 0; s < ns; ++s)
+    if (!huf.unite(static_cast<Index>(link.ends[s][0]), static_cast<Index>(link.ends[s][1]))) return false;
+  return true;
+}
+
+}  // namespace
+
 VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
   const std::size_t nv = cx.num_vertices(), nt = cx.num_triangles();
   VertexSectors vs;
@@ -89,83 +176,26 @@ VertexSectors compute_vertex_sectors(const TriangleComplex& cx) {
   vs.sector_begin.assign(nv + 1, 0);
   vs.h_nodes.assign(nv, 0);
   vs.boundary.assign(nv, 0);
-
-  struct Link {
-    Index edge;
-    int local;  // local triangle index
-  };
-  std::vector<Link> links;
-  std::vector<int> sector_of_local, root_to_sector;
-  std::vector<int> ends_count;
-  std::vector<std::array<int, 2>> ends;
-  std::vector<Index> h_edge_ids;
-
-  for (std::size_t v = 0; v < nv; ++v) {
+  VertexLink link;
+  for (Index v = 0; v < nv; ++v) {
     const Index begin = cx.vert_tri_begin[v], deg = cx.vert_tri_begin[v + 1] - begin;
     vs.sector_begin[v + 1] = vs.sector_begin[v];
     if (deg == 0) {
       vs.boundary[v] = 1;  // not on any triangle: a point is its own boundary
       continue;
     }
-    links.clear();
-    for (Index i = 0; i < deg; ++i) {
-      const Index t = cx.vert_tris[begin + i];
-      const Tri& f = cx.triangles[t];
-      const int j = f[0] == v ? 0 : f[1] == v ? 1 : 2;
-      links.push_back({cx.tri_edges[t][j], static_cast<int>(i)});
-      links.push_back({cx.tri_edges[t][(j + 2) % 3], static_cast<int>(i)});
-    }
-    std::sort(links.begin(), links.end(),
-              [](const Link& a, const Link& b) { return a.edge < b.edge || (a.edge == b.edge && a.local < b.local); });
-    UnionFind uf(deg);
-    for (std::size_t i = 0; i + 1 < links.size(); ++i)
-      if (links[i].edge == links[i + 1].edge && cx.edge_degree(links[i].edge) == 2) uf.unite(static_cast<Index>(links[i].local), static_cast<Index>(links[i + 1].local));
-    // Sector ids in order of their first triangle.
-    root_to_sector.assign(deg, -1);
-    sector_of_local.assign(deg, -1);
-    int ns = 0;
-    for (Index i = 0; i < deg; ++i) {
-      const Index r = uf.find(i);
-      if (root_to_sector[r] < 0) root_to_sector[r] = ns++;
-      sector_of_local[i] = root_to_sector[r];
-    }
-    if (ns > 0xfffe)
-      throw std::runtime_error(fmt::format("vertex {} has too many sectors", v));
-    // H nodes: link nodes (edges) of degree != 2, in edge order.
-    h_edge_ids.clear();
-    ends_count.assign(ns, 0);
-    ends.assign(ns, {-1, -1});
-    for (std::size_t i = 0; i < links.size(); ++i) {
-      if (cx.edge_degree(links[i].edge) == 2) continue;
-      if (h_edge_ids.empty() || h_edge_ids.back() != links[i].edge) h_edge_ids.push_back(links[i].edge);
-      const int node = static_cast<int>(h_edge_ids.size()) - 1;
-      const int s = sector_of_local[links[i].local];
-      if (ends_count[s] < 2) ends[s][ends_count[s]] = node;
-      ++ends_count[s];
-    }
-    int nh = static_cast<int>(h_edge_ids.size());
-    for (int s = 0; s < ns; ++s) {
-      if (ends_count[s] == 0) ends[s] = {nh, nh}, ++nh;  // closed chain: a self-loop on its own node
-      else if (ends_count[s] == 1) ends[s][1] = ends[s][0];  // cannot happen for chains; be safe
-    }
-    if (nh > 0xfffe)
-      throw std::runtime_error(fmt::format("vertex {} has too many link nodes", v));
+    gather_sides(cx, v, link);
+    const int ns = number_sectors(cx, v, deg, link);
+    const int nh = link_nodes(cx, v, ns, link);
     vs.h_nodes[v] = static_cast<std::uint16_t>(nh);
-    // ∂G: H_v is a forest.
-    UnionFind huf(static_cast<std::size_t>(nh));
-    bool forest = true;
-    for (int s = 0; s < ns && forest; ++s) forest = huf.unite(static_cast<Index>(ends[s][0]), static_cast<Index>(ends[s][1]));
-    vs.boundary[v] = forest ? 1 : 0;
-
+    vs.boundary[v] = link_is_forest(link, ns, nh) ? 1 : 0;
     for (Index i = 0; i < deg; ++i) {
       const Index t = cx.vert_tris[begin + i];
-      const Tri& f = cx.triangles[t];
-      const int j = f[0] == v ? 0 : f[1] == v ? 1 : 2;
-      vs.corner_sector[3 * t + j] = static_cast<std::uint16_t>(sector_of_local[i]);
+      vs.corner_sector[3 * t + corner_of(cx.triangles[t], v)] = static_cast<std::uint16_t>(link.sector_of_local[i]);
     }
     for (int s = 0; s < ns; ++s) {
-      vs.end_a.push_back(static_cast<std::uint16_t>(ends[s][0]));
-      vs.end_b.push_back(static_cast<std::uint16_t>(ends[s][1]));
+      vs.end_a.push_back(static_cast<std::uint16_t>(link.ends[s][0]));
+      vs.end_b.push_back(static_cast<std::uint16_t>(link.ends[s][1]));
     }
     vs.sector_begin[v + 1] = vs.sector_begin[v] + static_cast<Index>(ns);
   }

@@ -110,11 +110,10 @@ int Dual::parity(CellId c, Index a, Index b, Index cc, Index d) const {
   return (inversions & 1) ? -1 : 1;
 }
 
-void Dual::classify(const std::vector<Tri>& faces) {
-  const std::size_t nc = cells_.size();
-  std::vector<std::uint8_t> surface_mask(nc, 0);
-  std::vector<CellId> seeds;
-  std::vector<char> exterior(nc, 0);
+Dual::SurfaceCells Dual::mark_surface_facets(const std::vector<Tri>& faces) {
+  SurfaceCells marks;
+  marks.facet_mask.assign(cells_.size(), 0);
+  marks.exterior.assign(cells_.size(), 0);
   used_.assign(points_.size(), 0);
   std::size_t missing = 0;
   long long first_missing = -1;
@@ -129,18 +128,14 @@ void Dual::classify(const std::vector<Tri>& faces) {
       const CellId c = *it;
       const int l1 = local(c, t[1]), l2 = local(c, t[2]);
       if (l1 < 0 || l2 < 0) continue;
-      const int l0 = local(c, t[0]);
-      const int k = 6 - l0 - l1 - l2;  // the fourth corner
+      const int k = 6 - local(c, t[0]) - l1 - l2;  // the fourth corner
       ++found;
-      surface_mask[c] |= std::uint8_t(1u << k);
+      marks.facet_mask[c] |= std::uint8_t(1u << k);
       // The face is outward: the interior cell has its fourth corner on the negative side.
-      if (parity(c, t[0], t[1], t[2], cells_[c][k]) < 0) seeds.push_back(c);
-      else exterior[c] = 1;
+      if (parity(c, t[0], t[1], t[2], cells_[c][k]) < 0) marks.interior_seeds.push_back(c);
+      else marks.exterior[c] = 1;
     }
-    if (found == 0) {
-      ++missing;
-      if (first_missing < 0) first_missing = static_cast<long long>(fi);
-    }
+    if (found == 0 && missing++ == 0) first_missing = static_cast<long long>(fi);
   }
   if (missing)
     throw std::invalid_argument(std::to_string(missing) + " of " + std::to_string(faces.size()) +
@@ -151,14 +146,17 @@ void Dual::classify(const std::vector<Tri>& faces) {
     if (!used_[v])
       throw std::invalid_argument("vertex " + std::to_string(v) +
                                   " is used by no face; remove unreferenced vertices (`repair`) first");
+  std::sort(marks.interior_seeds.begin(), marks.interior_seeds.end());
+  marks.interior_seeds.erase(std::unique(marks.interior_seeds.begin(), marks.interior_seeds.end()),
+                             marks.interior_seeds.end());
+  return marks;
+}
 
-  // Flood the interior through non-surface facets, one component per unvisited seed.
-  solid_.assign(nc, 0);
-  component_.assign(nc, -1);
-  std::sort(seeds.begin(), seeds.end());
-  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+void Dual::flood_interior(const SurfaceCells& marks) {
+  solid_.assign(cells_.size(), 0);
+  component_.assign(cells_.size(), -1);
   std::vector<CellId> stack;
-  for (CellId s : seeds) {
+  for (CellId s : marks.interior_seeds) {
     if (component_[s] >= 0) continue;
     const int comp = num_components_++;
     component_[s] = comp;
@@ -166,12 +164,12 @@ void Dual::classify(const std::vector<Tri>& faces) {
     while (!stack.empty()) {
       const CellId c = stack.back();
       stack.pop_back();
-      if (exterior[c])
+      if (marks.exterior[c])
         throw std::invalid_argument("the faces do not bound a solid consistently (a cell is both inside and outside); "
                                     "check orientation and self-intersections (`repair`)");
       solid_[c] = 1;
       for (int k = 0; k < 4; ++k) {
-        if (surface_mask[c] >> k & 1) continue;
+        if (marks.facet_mask[c] >> k & 1) continue;
         const CellId n = nbrs_[c][k];
         if (n == kNoId)
           throw std::invalid_argument("the interior reaches the convex hull through a gap: the faces do not close a "
@@ -183,15 +181,23 @@ void Dual::classify(const std::vector<Tri>& faces) {
       }
     }
   }
-  forced_.assign(nc, 0);
+}
+
+void Dual::count_solid_uses() {
   solid_uses_.assign(points_.size(), 0);
-  for (CellId c = 0; c < nc; ++c)
+  for (CellId c = 0; c < cells_.size(); ++c)
     if (solid_[c])
       for (Index v : cells_[c]) ++solid_uses_[v];
   for (std::size_t v = 0; v < points_.size(); ++v)
     if (!solid_uses_[v])
       throw std::invalid_argument("vertex " + std::to_string(v) + " touches no interior cell: the mesh is not a closed "
                                   "Delaunay surface around a solid");
+}
+
+void Dual::classify(const std::vector<Tri>& faces) {
+  flood_interior(mark_surface_facets(faces));
+  forced_.assign(cells_.size(), 0);
+  count_solid_uses();
 }
 
 void Dual::build_edges() {

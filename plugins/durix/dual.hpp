@@ -162,6 +162,18 @@ class Dual {
   void build_edges();
   void circumsphere(CellId c);
   void classify(const std::vector<Tri>& faces);
+  /// Per cell: which of its facets are input faces, and whether an input face sees it from
+  /// outside; the cells an input face sees from inside seed the flood.
+  struct SurfaceCells {
+    std::vector<std::uint8_t> facet_mask;
+    std::vector<char> exterior;
+    std::vector<CellId> interior_seeds;  ///< sorted, unique
+  };
+  SurfaceCells mark_surface_facets(const std::vector<Tri>& faces);
+  /// Solid cells: the flood from the seeds through facets that are no input face, one
+  /// component per seed not yet reached.
+  void flood_interior(const SurfaceCells& marks);
+  void count_solid_uses();
   /// +1 when (a,b,c,d) is an even permutation of cell c's corners, -1 when odd.
   int parity(CellId c, Index a, Index b, Index cc, Index d) const;
 

@@ -4,7 +4,9 @@
 #include "engine.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <unordered_set>
 
@@ -104,35 +106,73 @@ std::size_t Engine::propagate(EdgeId seed) {
   return removed;
 }
 
+namespace {
+
+/// A boundary node to try carving: the tip of a sharp turn of the sheet's boundary.
+struct Spike {
+  double saliency;
+  CellId tip;
+  bool operator<(const Spike& o) const {
+    return saliency != o.saliency ? saliency > o.saliency : tip > o.tip;  // the sharpest on top
+  }
+};
+
+/// Consecutive boundary half-edges (h, h_a) turning sharper than 90° at their common node (the
+/// tip), turning towards the sheet; the saliency is ‖û × â‖ (notes §3.7). Nothing otherwise.
+std::optional<Spike> boundary_spike(const Engine& engine, const HalfEdge& h) {
+  const Dual& d = engine.d;
+  if (!d.is_medial_edge(h.t) || !engine.boundary_half_edge(h) || d.label(d.face(h)) < 0) return std::nullopt;
+  const CellId s = d.start(h), tip = d.end(h);
+  // The boundary successor at the tip, on the same side.
+  HalfEdge g = d.next(h);
+  for (int i = 0; i < 64 && !engine.boundary_half_edge(g); ++i) g = d.next(d.side_nbr(g));
+  if (!engine.boundary_half_edge(g)) return std::nullopt;
+  const Vec3 c0 = d.centre(s), c1 = d.centre(tip), c2 = d.centre(d.end(g));
+  const Vec3 inner = d.centre(d.end(d.next(h)));
+  Vec3 u = c1 - c0, a = c2 - c1;
+  const double lu = u.norm(), la = a.norm();
+  if (lu <= 0 || la <= 0) return std::nullopt;
+  u /= lu;
+  a /= la;
+  const Vec3 n = u.cross(inner - c1);
+  const Vec3 ua = u.cross(a);
+  if (ua.dot(n) <= 0 || u.dot(a) >= 0) return std::nullopt;
+  return Spike{ua.norm(), tip};
+}
+
+/// Calls `consider` with both half-edges of each volumetric side of facet t.
+template <typename F>
+void both_half_edges(const Dual& d, const Facet& t, const F& consider) {
+  const auto v = d.facet_vertices(t);
+  for (int i = 0; i < 3; ++i) {
+    const Index x = v[i], y = v[(i + 1) % 3];
+    if (!d.volumetric(d.edge_of(t.cell, x, y))) continue;
+    consider(HalfEdge{t, x, y});
+    consider(HalfEdge{t, y, x});
+  }
+}
+
+/// The tip's solid neighbours (sorted) when it has at least two surface facets; none otherwise.
+std::vector<CellId> carvable_tip_neighbours(const Dual& d, CellId tip) {
+  std::vector<CellId> neighbours;
+  int surface = 0;
+  for (int k = 0; k < 4; ++k) {
+    const CellId n = d.neighbour(tip, k);
+    if (d.solid(n)) neighbours.push_back(n);
+    else ++surface;
+  }
+  if (surface < 2) return {};
+  std::sort(neighbours.begin(), neighbours.end());
+  return neighbours;
+}
+
+}  // namespace
+
 std::size_t Engine::simplify_boundaries() {
-  // Candidates: consecutive boundary half-edges (h, h_a) turning sharper than 90° at their
-  // common node, the sharpest (smallest saliency ‖û × â‖) first (notes §3.7).
-  struct Candidate {
-    double saliency;
-    CellId tip;
-    bool operator<(const Candidate& o) const {
-      return saliency != o.saliency ? saliency > o.saliency : tip > o.tip;  // min-heap
-    }
-  };
-  std::priority_queue<Candidate> heap;
+  // Candidates: sharp boundary turns, the sharpest first (notes §3.7).
+  std::priority_queue<Spike> heap;
   const auto consider = [&](const HalfEdge& h) {
-    if (!d.is_medial_edge(h.t) || !boundary_half_edge(h) || d.label(d.face(h)) < 0) return;
-    const CellId s = d.start(h), tip = d.end(h);
-    // The boundary successor at the tip, on the same side.
-    HalfEdge g = d.next(h);
-    for (int i = 0; i < 64 && !boundary_half_edge(g); ++i) g = d.next(d.side_nbr(g));
-    if (!boundary_half_edge(g)) return;
-    const Vec3 c0 = d.centre(s), c1 = d.centre(tip), c2 = d.centre(d.end(g));
-    const Vec3 inner = d.centre(d.end(d.next(h)));
-    Vec3 u = c1 - c0, a = c2 - c1;
-    const double lu = u.norm(), la = a.norm();
-    if (lu <= 0 || la <= 0) return;
-    u /= lu;
-    a /= la;
-    const Vec3 n = u.cross(inner - c1);
-    const Vec3 ua = u.cross(a);
-    if (ua.dot(n) <= 0 || u.dot(a) >= 0) return;
-    heap.push({ua.norm(), tip});
+    if (const auto spike = boundary_spike(*this, h)) heap.push(*spike);
   };
   std::vector<Facet> facets;
   for (EdgeId e = 0; e < d.num_edges(); ++e) {
@@ -147,37 +187,19 @@ std::size_t Engine::simplify_boundaries() {
   }
   std::size_t removed = prune_leaves(), steps = 0;
   while (!heap.empty()) {
-    const Candidate cand = heap.top();
+    const CellId tip = heap.top().tip;
     heap.pop();
     if ((++steps & 255) == 0 && check_cancelled) check_cancelled();
-    const CellId tip = cand.tip;
     if (!d.solid(tip)) continue;
-    int surface = 0;
-    std::vector<CellId> neighbours;
-    for (int k = 0; k < 4; ++k) {
-      const CellId n = d.neighbour(tip, k);
-      if (d.solid(n)) neighbours.push_back(n);
-      else ++surface;
-    }
-    if (surface < 2 || neighbours.empty()) continue;
-    std::sort(neighbours.begin(), neighbours.end());
-    if (carve(neighbours, {tip}, false) != CarveOutcome::Removed) continue;
+    const std::vector<CellId> neighbours = carvable_tip_neighbours(d, tip);
+    if (neighbours.empty() || carve(neighbours, {tip}, false) != CarveOutcome::Removed) continue;
     ++removed;
     ++report.boundary_removals;
     // New boundary half-edges around the neighbours.
     for (CellId n : neighbours)
       for (int k = 0; k < 4; ++k) {
-        const CellId m = d.neighbour(n, k);
-        if (!d.solid(m)) continue;
         const Facet t = d.facet(n, k);
-        if (d.degree(t) != 1) continue;
-        const auto v = d.facet_vertices(t);
-        for (int i = 0; i < 3; ++i) {
-          const Index x = v[i], y = v[(i + 1) % 3];
-          if (!d.volumetric(d.edge_of(t.cell, x, y))) continue;
-          consider({t, x, y});
-          consider({t, y, x});
-        }
+        if (d.solid(d.neighbour(n, k)) && d.degree(t) == 1) both_half_edges(d, t, consider);
       }
   }
   return removed;

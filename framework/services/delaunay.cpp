@@ -13,6 +13,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
@@ -24,6 +25,7 @@
 #include <random>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace medax::services {
 
@@ -97,33 +99,132 @@ void for_each_index(std::size_t n, bool parallel, const F& f) {
   else for (std::size_t i = 0; i < n; ++i) f(i);
 }
 
+/// Threads that can run here: the arena's, capped by any tbb::global_control in force.
+int usable_threads() {
+  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(std::min<std::size_t>(tbb::this_task_arena::max_concurrency(), allowed));
+}
+
+/// Runs f(begin, end) on chunks covering [0, n), in parallel or not: loops that look ahead
+/// within their chunk.
+template <typename F>
+void for_each_chunk(std::size_t n, bool parallel, const F& f) {
+  if (parallel)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
+  else f(std::size_t{0}, n);
+}
+
+/// Asks the cache for `x` ahead of its use: the per-cell loops below jump through the
+/// triangulation's memory, and would otherwise wait on a cache miss at nearly every cell.
+template <typename T>
+void prefetch(const T& x, bool for_writing = false) {
+  if (for_writing) __builtin_prefetch(static_cast<const void*>(&x), 1);
+  else __builtin_prefetch(static_cast<const void*>(&x));
+}
+
+/// How far ahead (in cells) the loops fetch a cell, and its corners and neighbours.
+constexpr std::size_t kFetchCellAhead = 16;
+constexpr std::size_t kFetchAroundAhead = 8;
+
+/// A cell handle and the key that orders it.
+template <typename CellHandle>
+struct KeyedCell {
+  std::array<Index, 4> key;
+  CellHandle cell;
+};
+
+/// Each cell with its corners' ranks sorted ascending (its key), in the container's order.
+template <typename CellHandle>
+std::vector<KeyedCell<CellHandle>> keyed_cells(const std::vector<CellHandle>& cells, bool parallel) {
+  std::vector<KeyedCell<CellHandle>> keyed(cells.size());
+  for_each_chunk(cells.size(), parallel, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i + kFetchAroundAhead < end)
+        for (int k = 0; k < 4; ++k) prefetch(cells[i + kFetchAroundAhead]->vertex(k)->info());
+      const auto& c = cells[i];
+      auto& key = keyed[i].key;
+      key = {c->vertex(0)->info().rank, c->vertex(1)->info().rank, c->vertex(2)->info().rank,
+             c->vertex(3)->info().rank};
+      std::sort(key.begin(), key.end());
+      keyed[i].cell = c;
+    }
+  });
+  return keyed;
+}
+
 /// The cells in a deterministic order, whatever the insertion history: by their corners' ranks
 /// (all below `ranks`), each cell's ranks sorted ascending and compared lexicographically. A
 /// counting sort on the smallest rank, then a sort of each (small) bucket on the other three:
-/// no comparison sort of all cells.
+/// no comparison sort of all cells. The counting sort runs on a few slices of the cells at once;
+/// keys are distinct (a cell is its four corners), so the order does not depend on the slices.
 template <typename CellHandle>
-std::vector<std::uint32_t> canonical_cell_order(const std::vector<CellHandle>& cells, std::size_t ranks, bool parallel) {
-  const std::size_t n = cells.size();
-  std::vector<std::array<Index, 4>> key(n);
-  for_each_index(n, parallel, [&](std::size_t i) {
-    const auto& c = cells[i];
-    key[i] = {c->vertex(0)->info().rank, c->vertex(1)->info().rank, c->vertex(2)->info().rank,
-              c->vertex(3)->info().rank};
-    std::sort(key[i].begin(), key[i].end());
+std::vector<CellHandle> cells_in_canonical_order(const std::vector<CellHandle>& cells, std::size_t ranks,
+                                                 bool parallel) {
+  const std::vector<KeyedCell<CellHandle>> keyed = keyed_cells(cells, parallel);
+  const std::size_t n = keyed.size();
+  const std::size_t slices = parallel ? std::clamp<std::size_t>(usable_threads(), 1, 8) : 1;
+  const auto slice_begin = [&](std::size_t s) { return n * s / slices; };
+  // next[s][r]: the count of slice s's cells in bucket r, then where the next of them goes.
+  std::vector<std::vector<std::uint32_t>> next(slices);
+  for_each_index(slices, parallel, [&](std::size_t s) {
+    next[s].assign(ranks, 0);
+    for (std::size_t i = slice_begin(s); i < slice_begin(s + 1); ++i) ++next[s][keyed[i].key[0]];
   });
   std::vector<std::size_t> start(ranks + 1, 0);
-  for (const auto& k : key) ++start[k[0] + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::uint32_t> order(n);
-  {
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order[next[key[i][0]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t r = 0, at = 0; r < ranks; ++r) {
+    start[r] = at;
+    for (auto& slice : next) at += std::exchange(slice[r], static_cast<std::uint32_t>(at));
+    start[r + 1] = at;
   }
-  const auto by_key = [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; };
-  for_each_index(ranks, parallel, [&](std::size_t r) {
-    if (start[r + 1] - start[r] > 1) std::sort(order.begin() + start[r], order.begin() + start[r + 1], by_key);
+  std::vector<KeyedCell<CellHandle>> sorted(n);
+  for_each_index(slices, parallel, [&](std::size_t s) {
+    for (std::size_t i = slice_begin(s); i < slice_begin(s + 1); ++i) sorted[next[s][keyed[i].key[0]]++] = keyed[i];
   });
+  const auto by_key = [](const KeyedCell<CellHandle>& a, const KeyedCell<CellHandle>& b) { return a.key < b.key; };
+  for_each_index(ranks, parallel, [&](std::size_t r) {
+    if (start[r + 1] - start[r] > 1) std::sort(sorted.begin() + start[r], sorted.begin() + start[r + 1], by_key);
+  });
+  std::vector<CellHandle> order(n);
+  for_each_index(n, parallel, [&](std::size_t i) { order[i] = sorted[i].cell; });
   return order;
+}
+
+/// Output arrays for n cells, allocated (and zeroed) side by side.
+DelaunayTetrahedralization allocate_cells(std::size_t n, bool parallel) {
+  DelaunayTetrahedralization out;
+  const auto cells = [&] { out.cells.resize(n); };
+  const auto neighbours = [&] { out.neighbours.resize(n); };
+  const auto centres = [&] {
+    out.circumcentres.resize(n);
+    out.circumradii.resize(n);
+  };
+  if (parallel) {
+    tbb::parallel_invoke(cells, neighbours, centres);
+  } else {
+    cells();
+    neighbours();
+    centres();
+  }
+  return out;
+}
+
+/// Writes cell i of the output from its triangulation cell c (numbered already, as are its
+/// neighbours).
+template <typename CellHandle>
+void write_cell(DelaunayTetrahedralization& out, std::size_t i, const CellHandle& c, bool canonical) {
+  const std::array<Index, 4> v{c->vertex(0)->info().point, c->vertex(1)->info().point, c->vertex(2)->info().point,
+                               c->vertex(3)->info().point};
+  const std::array<int, 4> corner = canonical_corners(v, canonical);
+  for (int k = 0; k < 4; ++k) {
+    out.cells[i][k] = v[corner[k]];
+    out.neighbours[i][k] = c->neighbor(corner[k])->info();  // kInfinite for infinite cells
+  }
+  const auto& p0 = c->vertex(corner[0])->point();
+  const K::Point_3 cc = robust_circumcenter(p0, c->vertex(corner[1])->point(), c->vertex(corner[2])->point(),
+                                            c->vertex(corner[3])->point());
+  out.circumcentres[i] = Vec3(cc.x(), cc.y(), cc.z());
+  out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, p0));
 }
 
 template <typename Triangulation>
@@ -140,28 +241,28 @@ DelaunayTetrahedralization extract(Triangulation& dt, std::size_t ranks, bool pa
   for (const auto& c : infinite) c->info() = DelaunayTetrahedralization::kInfinite;
   const std::size_t n = cells.size();
 
-  const std::vector<std::uint32_t> order = canonical_cell_order(cells, ranks, parallel);
-  for_each_index(n, parallel, [&](std::size_t i) { cells[order[i]]->info() = static_cast<std::int64_t>(i); });
-
-  DelaunayTetrahedralization out;
-  out.cells.resize(n);
-  out.neighbours.resize(n);
-  out.circumcentres.resize(n);
-  out.circumradii.resize(n);
-  for_each_index(n, parallel, [&](std::size_t i) {
-    const auto c = cells[order[i]];
-    const std::array<Index, 4> v{c->vertex(0)->info().point, c->vertex(1)->info().point, c->vertex(2)->info().point,
-                                 c->vertex(3)->info().point};
-    const std::array<int, 4> corner = canonical_corners(v, canonical);
-    for (int k = 0; k < 4; ++k) {
-      out.cells[i][k] = v[corner[k]];
-      out.neighbours[i][k] = c->neighbor(corner[k])->info();  // kInfinite for infinite cells
+  cells = cells_in_canonical_order(cells, ranks, parallel);
+  for_each_chunk(n, parallel, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i + kFetchCellAhead < end) prefetch(cells[i + kFetchCellAhead]->info(), true);
+      cells[i]->info() = static_cast<std::int64_t>(i);
     }
-    const auto& p0 = c->vertex(corner[0])->point();
-    const K::Point_3 cc = robust_circumcenter(p0, c->vertex(corner[1])->point(), c->vertex(corner[2])->point(),
-                                              c->vertex(corner[3])->point());
-    out.circumcentres[i] = Vec3(cc.x(), cc.y(), cc.z());
-    out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, p0));
+  });
+
+  DelaunayTetrahedralization out = allocate_cells(n, parallel);
+  for_each_chunk(n, parallel, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i + kFetchCellAhead < end) {
+        prefetch(*cells[i + kFetchCellAhead]);
+        prefetch(cells[i + kFetchCellAhead]->info());
+      }
+      if (i + kFetchAroundAhead < end)
+        for (int k = 0; k < 4; ++k) {
+          prefetch(cells[i + kFetchAroundAhead]->neighbor(k)->info());
+          prefetch(*cells[i + kFetchAroundAhead]->vertex(k));
+        }
+      write_cell(out, i, cells[i], canonical);
+    }
   });
   return out;
 }
@@ -244,12 +345,6 @@ void insert_concurrently(Triangulation& dt, const std::vector<K::Point_3>& point
       }
     }
   });
-}
-
-/// Threads that can run here: the arena's, capped by any tbb::global_control in force.
-int usable_threads() {
-  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  return static_cast<int>(std::min<std::size_t>(tbb::this_task_arena::max_concurrency(), allowed));
 }
 
 /// The Delaunay triangulation of the points, vertex infos set. Small rounds of the insertion

@@ -107,78 +107,109 @@ bool table_fits(std::uint64_t offset, std::uint64_t count, std::uint64_t size, s
   return offset <= file_size && count * size <= file_size - offset;
 }
 
-/// Why `file` cannot be handed to dlopen, or nothing. The loader maps each PT_LOAD segment's
-/// file range and touches it: a truncated file kills the process with SIGBUS inside dlopen, so
-/// every range the loader reads is checked against the file's size first.
-std::optional<std::string> elf_problem(const fs::path& file) {
-  std::error_code ec;
-  const std::uint64_t size = fs::file_size(file, ec);
-  if (ec) return fmt::format("cannot be read: {}; check that it exists and is readable", ec.message());
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return fmt::format("cannot be opened: {}; check that it is readable", std::strerror(errno));
-  const std::string remove = "rebuild it or remove it from the plugin path";
+constexpr const char* kRebuildOrRemove = "rebuild it or remove it from the plugin path";
+
+/// A plugin candidate opened for the checks below.
+struct ElfFile {
+  std::ifstream in;
+  std::uint64_t size = 0;
+  std::string truncated(const std::string& what, std::uint64_t end) const {
+    return fmt::format("truncated (its {} ends at byte {} but the file has {} bytes: a copy or build was cut "
+                       "short); {}",
+                       what, end, size, kRebuildOrRemove);
+  }
+};
+
+unsigned char own_byte_order() {
+  const std::uint16_t probe = 1;
+  unsigned char first = 0;
+  std::memcpy(&first, &probe, 1);
+  return first == 1 ? ELFDATA2LSB : ELFDATA2MSB;
+}
+
+/// Reads the ELF header; a problem when the file is no 64-bit shared library for this machine.
+std::optional<std::string> header_problem(ElfFile& f, Elf64_Ehdr& header) {
   unsigned char ident[EI_NIDENT] = {};
-  const bool whole_ident = read_at(in, 0, ident, sizeof ident);
-  if (std::memcmp(ident, ELFMAG, std::min<std::uint64_t>(SELFMAG, size)) != 0 || size == 0)
+  const bool whole_ident = read_at(f.in, 0, ident, sizeof ident);
+  if (std::memcmp(ident, ELFMAG, std::min<std::uint64_t>(SELFMAG, f.size)) != 0 || f.size == 0)
     return fmt::format("not a plugin (not an ELF shared library: no ELF magic number in its {} bytes); remove it "
                        "from the plugin path",
-                       size);
-  Elf64_Ehdr header{};
-  if (!whole_ident || size < sizeof header || !read_at(in, 0, &header, sizeof header))
-    return fmt::format("truncated (an ELF file of {} bytes, shorter than its {}-byte header); {}", size,
-                       sizeof header, remove);
+                       f.size);
+  if (!whole_ident || f.size < sizeof header || !read_at(f.in, 0, &header, sizeof header))
+    return fmt::format("truncated (an ELF file of {} bytes, shorter than its {}-byte header); {}", f.size,
+                       sizeof header, kRebuildOrRemove);
   if (ident[EI_CLASS] != ELFCLASS64)
-    return fmt::format("not a plugin for this machine (a 32-bit ELF file; medax plugins are 64-bit); {}", remove);
-  const unsigned char own_data = [] {
-    const std::uint16_t probe = 1;
-    unsigned char first = 0;
-    std::memcpy(&first, &probe, 1);
-    return first == 1 ? ELFDATA2LSB : ELFDATA2MSB;
-  }();
-  if (ident[EI_DATA] != own_data)
-    return fmt::format("not a plugin for this machine (its byte order differs); {}", remove);
+    return fmt::format("not a plugin for this machine (a 32-bit ELF file; medax plugins are 64-bit); {}",
+                       kRebuildOrRemove);
+  if (ident[EI_DATA] != own_byte_order())
+    return fmt::format("not a plugin for this machine (its byte order differs); {}", kRebuildOrRemove);
   if (header.e_machine != own_machine() && own_machine() != EM_NONE)
     return fmt::format("not a plugin for this machine (ELF machine {} but this medax is machine {}); {}",
-                       header.e_machine, own_machine(), remove);
+                       header.e_machine, own_machine(), kRebuildOrRemove);
   if (header.e_type != ET_DYN)
     return fmt::format("not a plugin (ELF type {} is not a shared library; plugins are built with "
                        "medax_add_plugin); remove it from the plugin path",
                        header.e_type == ET_EXEC ? "executable" : header.e_type == ET_REL ? "object file"
                                                                  : std::to_string(header.e_type));
-  const auto truncated = [&](const std::string& what, std::uint64_t end) {
-    return fmt::format("truncated (its {} ends at byte {} but the file has {} bytes: a copy or build was cut "
-                       "short); {}",
-                       what, end, size, remove);
-  };
+  return std::nullopt;
+}
+
+/// The program header table and every PT_LOAD segment lie inside the file; `loads` tells
+/// whether there is any segment to load.
+std::optional<std::string> segments_problem(ElfFile& f, const Elf64_Ehdr& header, bool& loads) {
+  loads = false;
   if (header.e_phnum > 0 && header.e_phentsize != sizeof(Elf64_Phdr))
-    return fmt::format("not a plugin (corrupt ELF header: program header size {}); {}", header.e_phentsize, remove);
-  if (header.e_phnum > 0 && !table_fits(header.e_phoff, header.e_phnum, header.e_phentsize, size))
-    return truncated("program header table", header.e_phoff + std::uint64_t{header.e_phnum} * header.e_phentsize);
-  bool loads = false;
+    return fmt::format("not a plugin (corrupt ELF header: program header size {}); {}", header.e_phentsize,
+                       kRebuildOrRemove);
+  if (header.e_phnum > 0 && !table_fits(header.e_phoff, header.e_phnum, header.e_phentsize, f.size))
+    return f.truncated("program header table", header.e_phoff + std::uint64_t{header.e_phnum} * header.e_phentsize);
   for (std::uint16_t i = 0; i < header.e_phnum; ++i) {
     Elf64_Phdr segment{};
-    if (!read_at(in, header.e_phoff + std::uint64_t{i} * sizeof segment, &segment, sizeof segment))
-      return truncated("program header table", header.e_phoff + (std::uint64_t{i} + 1) * sizeof segment);
+    if (!read_at(f.in, header.e_phoff + std::uint64_t{i} * sizeof segment, &segment, sizeof segment))
+      return f.truncated("program header table", header.e_phoff + (std::uint64_t{i} + 1) * sizeof segment);
     if (segment.p_type != PT_LOAD) continue;
     loads = true;
-    if (segment.p_offset > size || segment.p_filesz > size - segment.p_offset)
-      return truncated(fmt::format("loaded segment {}", i), segment.p_offset + segment.p_filesz);
+    if (segment.p_offset > f.size || segment.p_filesz > f.size - segment.p_offset)
+      return f.truncated(fmt::format("loaded segment {}", i), segment.p_offset + segment.p_filesz);
   }
-  if (header.e_shoff != 0) {
-    if (header.e_shentsize != sizeof(Elf64_Shdr))
-      return fmt::format("not a plugin (corrupt ELF header: section header size {}); {}", header.e_shentsize, remove);
-    // e_shnum 0 with a table: the real count is in section 0's sh_size (extended numbering).
-    std::uint64_t sections = header.e_shnum;
-    if (sections == 0) {
-      Elf64_Shdr first{};
-      if (!table_fits(header.e_shoff, 1, sizeof first, size) || !read_at(in, header.e_shoff, &first, sizeof first))
-        return truncated("section header table", header.e_shoff + sizeof first);
-      sections = first.sh_size;
-    }
-    if (sections > size / sizeof(Elf64_Shdr) || !table_fits(header.e_shoff, sections, header.e_shentsize, size))
-      return truncated("section header table", header.e_shoff + sections * header.e_shentsize);
+  return std::nullopt;
+}
+
+/// The section header table, when there is one, lies inside the file.
+std::optional<std::string> sections_problem(ElfFile& f, const Elf64_Ehdr& header) {
+  if (header.e_shoff == 0) return std::nullopt;
+  if (header.e_shentsize != sizeof(Elf64_Shdr))
+    return fmt::format("not a plugin (corrupt ELF header: section header size {}); {}", header.e_shentsize,
+                       kRebuildOrRemove);
+  // e_shnum 0 with a table: the real count is in section 0's sh_size (extended numbering).
+  std::uint64_t sections = header.e_shnum;
+  if (sections == 0) {
+    Elf64_Shdr first{};
+    if (!table_fits(header.e_shoff, 1, sizeof first, f.size) || !read_at(f.in, header.e_shoff, &first, sizeof first))
+      return f.truncated("section header table", header.e_shoff + sizeof first);
+    sections = first.sh_size;
   }
-  if (!loads) return fmt::format("not a plugin (an ELF file with nothing to load); {}", remove);
+  if (sections > f.size / sizeof(Elf64_Shdr) || !table_fits(header.e_shoff, sections, header.e_shentsize, f.size))
+    return f.truncated("section header table", header.e_shoff + sections * header.e_shentsize);
+  return std::nullopt;
+}
+
+/// Why `file` cannot be handed to dlopen, or nothing. The loader maps each PT_LOAD segment's
+/// file range and touches it: a truncated file kills the process with SIGBUS inside dlopen, so
+/// every range the loader reads is checked against the file's size first.
+std::optional<std::string> elf_problem(const fs::path& file) {
+  ElfFile f;
+  std::error_code ec;
+  f.size = fs::file_size(file, ec);
+  if (ec) return fmt::format("cannot be read: {}; check that it exists and is readable", ec.message());
+  f.in.open(file, std::ios::binary);
+  if (!f.in) return fmt::format("cannot be opened: {}; check that it is readable", std::strerror(errno));
+  Elf64_Ehdr header{};
+  bool loads = false;
+  if (auto problem = header_problem(f, header)) return problem;
+  if (auto problem = segments_problem(f, header, loads)) return problem;
+  if (auto problem = sections_problem(f, header)) return problem;
+  if (!loads) return fmt::format("not a plugin (an ELF file with nothing to load); {}", kRebuildOrRemove);
   return std::nullopt;
 }
 }  // namespace

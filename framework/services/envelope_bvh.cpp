@@ -207,6 +207,23 @@ class Builder {
 
 }  // namespace
 
+void EnvelopeBvh::pair_children(const std::vector<BvhNode>& nodes) {
+  root_ = nodes[0];
+  // Inner nodes keep their order (the root first); each gets the index of its pair.
+  std::vector<std::uint32_t> pair_of(nodes.size(), 0);
+  std::uint32_t inner = 0;
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    if (nodes[id].count == 0) pair_of[id] = inner++;
+  pairs_.assign(inner, ChildPair{});
+  for (std::size_t id = 0; id < nodes.size(); ++id) {
+    if (nodes[id].count > 0) continue;
+    ChildPair& pair = pairs_[pair_of[id]];
+    const std::uint32_t left = static_cast<std::uint32_t>(id + 1), right = nodes[id].first;
+    pair.set(0, nodes[left], pair_of[left]);
+    pair.set(1, nodes[right], pair_of[right]);
+  }
+}
+
 EnvelopeBvh::EnvelopeBvh(std::vector<PrimGeom> primitives) {
   const std::size_t np = primitives.size();
   std::vector<BuildItem> items(np);
@@ -218,8 +235,9 @@ EnvelopeBvh::EnvelopeBvh(std::vector<PrimGeom> primitives) {
   std::vector<Index> order(np);
   std::iota(order.begin(), order.end(), Index{0});
   if (np > 0) {
-    nodes_.resize(2 * np - 1);
-    Builder(nodes_, order, items).build(0, 0, static_cast<std::uint32_t>(np));
+    std::vector<BvhNode> nodes(2 * np - 1);
+    Builder(nodes, order, items).build(0, 0, static_cast<std::uint32_t>(np));
+    pair_children(nodes);
   }
   bvh_index_.resize(np);
   for (std::size_t i = 0; i < np; ++i) bvh_index_[order[i]] = static_cast<Index>(i);

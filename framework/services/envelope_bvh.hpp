@@ -5,6 +5,9 @@
 #include "envelope_primitives.hpp"
 
 #include <array>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <cstdint>
 #include <vector>
 
@@ -53,6 +56,21 @@ struct BvhNode {
   }
 };
 
+/// The two children of an inner node, side by side, as the search reads them: their bounds (the
+/// fields of BvhNode, one lane per child) and where each leads. Both lower bounds come from one
+/// pass of two-lane arithmetic, each lane doing BvhNode::lower_bound's operations in its order, so
+/// the bounds are the same doubles.
+struct ChildPair {
+  enum Row { kLo = 0, kHi = 3, kG = 6, kRmax = 9, kSlope = 10, kGamma = 11, kRows = 12 };
+  float lane[kRows][2];
+  std::uint32_t index[2];  ///< inner child: its pair's index; leaf child: its first primitive
+  std::uint32_t count[2];  ///< leaf child: its number of primitives; inner child: 0
+
+  void set(int side, const BvhNode& child, std::uint32_t child_index);
+  /// lower_bound(x) of both children.
+  void lower_bounds(const Vec3& x, double out[2]) const;
+};
+
 /// A value of φ and the primitive giving it.
 struct Hit {
   double d;
@@ -87,32 +105,88 @@ class EnvelopeBvh {
   Eval ball(const Vec3& x, std::int64_t prim) const { return primitive(prim).full(x); }
 
  private:
+  /// Keeps the root and, per inner node of `nodes` (built left child next, right child at
+  /// `first`), its children's pair.
+  void pair_children(const std::vector<BvhNode>& nodes);
+
   std::vector<PrimGeom> geometry_;   // BVH order
   std::vector<Index> public_index_;  // BVH order -> public order
   std::vector<Index> bvh_index_;     // public order -> BVH order
-  std::vector<BvhNode> nodes_;
+  BvhNode root_;                  // the root's bounds
+  std::vector<ChildPair> pairs_;  // the inner nodes' children, root's first; empty when the root is a leaf
   Box bounds_;
 };
+
+inline void ChildPair::set(int side, const BvhNode& child, std::uint32_t child_index) {
+  for (int k = 0; k < 3; ++k) {
+    lane[kLo + k][side] = child.lo[k];
+    lane[kHi + k][side] = child.hi[k];
+    lane[kG + k][side] = child.g[k];
+  }
+  lane[kRmax][side] = child.rmax;
+  lane[kSlope][side] = child.slope;
+  lane[kGamma][side] = child.gamma;
+  index[side] = child.count > 0 ? child.first : child_index;
+  count[side] = child.count;
+}
+
+#if defined(__SSE2__)
+inline void ChildPair::lower_bounds(const Vec3& x, double out[2]) const {
+  const auto row = [this](int r) {
+    return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lane[r]))));
+  };
+  const __m128d zero = _mm_setzero_pd();
+  __m128d d2 = zero, gx = zero;
+  for (int k = 0; k < 3; ++k) {
+    const __m128d xk = _mm_set1_pd(x[k]);
+    const __m128d below = _mm_sub_pd(row(kLo + k), xk), above = _mm_sub_pd(xk, row(kHi + k));
+    // std::max(0, std::max(below, above)) lane by lane (no NaN here).
+    const __m128d o = _mm_max_pd(_mm_max_pd(above, below), zero);
+    d2 = _mm_add_pd(d2, _mm_mul_pd(o, o));
+    gx = _mm_add_pd(gx, _mm_mul_pd(row(kG + k), xk));
+  }
+  const __m128d d = _mm_sqrt_pd(d2);
+  const __m128d by_radius = _mm_sub_pd(d, row(kRmax));
+  const __m128d by_slope =
+      _mm_add_pd(_mm_sub_pd(_mm_mul_pd(_mm_sub_pd(_mm_set1_pd(1.0), row(kSlope)), d), gx), row(kGamma));
+  _mm_storeu_pd(out, _mm_max_pd(by_slope, by_radius));
+}
+#else
+inline void ChildPair::lower_bounds(const Vec3& x, double out[2]) const {
+  for (int side = 0; side < 2; ++side) {
+    BvhNode node;
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = lane[kLo + k][side];
+      node.hi[k] = lane[kHi + k][side];
+      node.g[k] = lane[kG + k][side];
+    }
+    node.rmax = lane[kRmax][side];
+    node.slope = lane[kSlope][side];
+    node.gamma = lane[kGamma][side];
+    out[side] = node.lower_bound(x);
+  }
+}
+#endif
 
 inline Hit EnvelopeBvh::query(const Vec3& x, double upper, double stop_below, double settle, Hit start) const {
   Hit best = start.prim >= 0 && start.d < upper ? start : Hit{upper, -1};
   if (best.d < stop_below) return best;
   double bound = best.prim >= 0 && best.d <= settle ? stop_below : best.d;  // prune what cannot go below
-  if (nodes_.empty()) return best;
+  if (geometry_.empty()) return best;
+  // A node to visit: an inner node's pair (count 0) or a leaf's primitives, and its lower bound.
   struct Item {
-    std::uint32_t node;
+    std::uint32_t index, count;
     double lb;
   };
   Item stack[128];
   int top = 0;
-  const double lb_root = nodes_[0].lower_bound(x);
-  if (lb_root < bound) stack[top++] = {0, lb_root};
+  const double lb_root = root_.lower_bound(x);
+  if (lb_root < bound) stack[top++] = {root_.count > 0 ? root_.first : 0, root_.count, lb_root};
   while (top > 0) {
     const Item item = stack[--top];
     if (item.lb >= bound) continue;
-    const BvhNode& node = nodes_[item.node];
-    if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+    if (item.count > 0) {
+      for (std::uint32_t i = item.index; i < item.index + item.count; ++i) {
         const double d = geometry_[i].value(x);
         if (d < best.d) {
           best = {d, static_cast<std::int64_t>(i)};
@@ -122,15 +196,17 @@ inline Hit EnvelopeBvh::query(const Vec3& x, double upper, double stop_below, do
       }
       continue;
     }
-    const std::uint32_t left = item.node + 1, right = node.first;
-    const double lb_left = nodes_[left].lower_bound(x), lb_right = nodes_[right].lower_bound(x);
+    const ChildPair& pair = pairs_[item.index];
+    double lb[2];
+    pair.lower_bounds(x, lb);
+    const Item left{pair.index[0], pair.count[0], lb[0]}, right{pair.index[1], pair.count[1], lb[1]};
     // Push the farther child first so that the nearer one is explored first.
-    if (lb_left <= lb_right) {
-      if (lb_right < bound) stack[top++] = {right, lb_right};
-      if (lb_left < bound) stack[top++] = {left, lb_left};
+    if (lb[0] <= lb[1]) {
+      if (lb[1] < bound) stack[top++] = right;
+      if (lb[0] < bound) stack[top++] = left;
     } else {
-      if (lb_left < bound) stack[top++] = {left, lb_left};
-      if (lb_right < bound) stack[top++] = {right, lb_right};
+      if (lb[0] < bound) stack[top++] = left;
+      if (lb[1] < bound) stack[top++] = right;
     }
   }
   return best;

@@ -25,7 +25,8 @@ inline double sphere_value(const Vec3& x, const Vec3& c, double r) { return (x -
 /// What a cone's closed form needs beyond its two balls.
 struct ConeFrame {
   double length = 0, inv_length = 0, k = 0;
-  double q = 0;  ///< √(1 − k²); 0 when one ball contains the other (|k| ≥ 1) or c0 = c1
+  double q = 0;         ///< √(1 − k²); 0 when one ball contains the other (|k| ≥ 1) or c0 = c1
+  Vec3 u = Vec3::Zero();  ///< the unit axis (c1 − c0)/L, when q > 0
 
   ConeFrame() = default;
   ConeFrame(const Vec3& c0, double r0, const Vec3& c1, double r1) {
@@ -35,6 +36,7 @@ struct ConeFrame {
     k = (r1 - r0) / length;
     if (!(std::abs(k) < 1)) return;
     q = std::sqrt(1 - k * k);
+    u = (c1 - c0) * inv_length;
   }
 };
 
@@ -47,7 +49,7 @@ inline double cone_value(const Vec3& x, const Vec3& c0, double r0, const Vec3& c
                          Eval* out) {
   const Vec3 w = x - c0;
   if (f.q > 0) {
-    const Vec3 u = (c1 - c0) * f.inv_length;
+    const Vec3& u = f.u;
     const double s = w.dot(u);
     const double rho = w.cross(u).norm();
     const double t = s + f.k * rho / f.q;
@@ -142,20 +144,23 @@ struct PrimGeom {
       visible[1] = u + v > 1;      // side (1, 2), opposite vertex 0
       visible[2] = u < 0;          // side (2, 0), opposite vertex 1
     }
-    Eval e[3];
+    // The sides in order (0, 1), (1, 2), (2, 0), the first of equal values kept.
     double best = kInf;
-    int arg = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (!visible[k]) continue;
-      const int j = (k + 1) % 3;
-      const double d = cone_value<kFull>(x, c[k], r[k], c[j], r[j], edge[k], &e[k]);
-      if (d < best) {
-        best = d;
-        arg = k;
-      }
-    }
-    if constexpr (kFull) *out = e[arg];
+    if (visible[0]) best = side_value<kFull, 0>(x, best, out);
+    if (visible[1]) best = side_value<kFull, 1>(x, best, out);
+    if (visible[2]) best = side_value<kFull, 2>(x, best, out);
     return best;
+  }
+
+  /// min(best, the cone of side k at x); with kFull, *out follows the minimum.
+  template <bool kFull, int k>
+  double side_value(const Vec3& x, double best, Eval* out) const {
+    constexpr int j = (k + 1) % 3;
+    Eval e;
+    const double d = cone_value<kFull>(x, c[k], r[k], c[j], r[j], edge[k], &e);
+    if (!(d < best)) return best;
+    if constexpr (kFull) *out = e;
+    return d;
   }
 
   double value(const Vec3& x) const { return eval<false>(x, nullptr); }

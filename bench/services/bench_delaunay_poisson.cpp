@@ -6,6 +6,9 @@
 //
 //   build-bench/bin/bench_delaunay_poisson [--benchmark_filter=1M] [--meshes DIR]
 //
+// The poisson line ends with a hash of the samples (points, normals, areas): run the same binary
+// against another libmedax_services.so (LD_LIBRARY_PATH) to check that a change keeps them.
+//
 // 100k runs are repeated and the fastest is kept, 1M runs once (the machine is shared); the CPU
 // column is the process's CPU time (all threads), which a loaded machine inflates less than the
 // wall time.
@@ -24,6 +27,7 @@
 #include <ctime>
 #include <cstdio>
 #include <cstring>
+#include <cstdint>
 
 namespace {
 
@@ -53,6 +57,18 @@ struct Timing {
   }
 };
 
+/// FNV-1a over the bytes of the samples' points, normals and areas.
+std::uint64_t samples_hash(const OrientedSamples& s) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  const auto mix = [&h](const void* data, std::size_t bytes) {
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
+  };
+  mix(s.points.data(), s.points.size() * sizeof(Vec3));
+  mix(s.normals.data(), s.normals.size() * sizeof(Vec3));
+  mix(s.areas.data(), s.areas.size() * sizeof(double));
+  return h;
+}
+
 std::string tag(std::size_t n) { return n >= 1000000 ? std::to_string(n / 1000000) + "M" : std::to_string(n / 1000) + "k"; }
 
 void BM_Poisson(benchmark::State& state, std::size_t n, int threads) {
@@ -60,19 +76,22 @@ void BM_Poisson(benchmark::State& state, std::size_t n, int threads) {
   const SurfaceMesh& mesh = bench::koala(meshes_dir);
   Timing time;
   double min_distance = 0;
+  std::uint64_t hash = 0;
   for (auto _ : state) {
     std::mt19937_64 rng(1);
     OrientedSamples s;
     time.measure([&] { s = services::sample_poisson_count(mesh, n, rng); });
     state.PauseTiming();
     min_distance = services::min_sample_distance(s) / services::poisson_packing_distance(services::surface_area(mesh), n);
+    hash = samples_hash(s);
     state.ResumeTiming();
   }
   time.report(state);
   state.counters["min_dist/packing"] = min_distance;
   std::printf("poisson/%s/threads:%d: wall %.3f s, cpu %.3f s, busiest thread %.3f s (target 1M <= 5 s); "
-              "minimum distance %.3f of the hexagonal packing's\n",
-              tag(n).c_str(), threads, time.wall, time.cpu, time.busiest, min_distance);
+              "minimum distance %.3f of the hexagonal packing's; samples hash %016llx\n",
+              tag(n).c_str(), threads, time.wall, time.cpu, time.busiest, min_distance,
+              static_cast<unsigned long long>(hash));
 }
 
 void BM_Delaunay(benchmark::State& state, std::size_t n, int threads) {

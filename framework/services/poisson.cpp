@@ -5,9 +5,9 @@
 #include <medax/services/kdtree.hpp>
 #include <medax/services/sampling.hpp>
 
+#include "poisson_areas.hpp"
 #include "poisson_neighbours.hpp"
 
-#include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -23,33 +23,27 @@ namespace medax::services {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxCandidates = 5e7;
 
-/// Samples whose normals are closer than the angle repel; zero normals (never produced for
-/// faces of positive area) agree with everything.
-struct NormalRule {
-  double min_dot;
-  explicit NormalRule(double angle_deg) : min_dot(std::cos(std::clamp(angle_deg, 0.0, 180.0) * kPi / 180.0)) {}
-  bool agree(const Vec3& a, const Vec3& b) const { return min_dot <= -1.0 || a.dot(b) > min_dot; }
-};
+using poisson_detail::NormalRule;
 
-/// A 4-ary max-heap over candidate weights that can lower a weight in place. Ties go to the
-/// larger index, so the order of the pops is fully determined (whatever the heap's shape). Each
-/// entry carries its weight and a node's four children share a cache line, so sifting reads
-/// little memory.
+/// A 4-ary max-heap over candidate weights that can lower a weight in place, over the graph's
+/// numbering. Ties go to the larger candidate index (`original`), so the order of the pops is
+/// fully determined (whatever the heap's shape). Each entry carries its weight and a node's four
+/// children share a cache line, so sifting reads little memory.
 class EliminationHeap {
  public:
-  explicit EliminationHeap(const std::vector<double>& weights) : position_(weights.size()) {
+  EliminationHeap(const std::vector<double>& weights, const std::vector<Index>& original) : position_(weights.size()) {
     heap_.resize(weights.size());
-    for (std::size_t i = 0; i < heap_.size(); ++i) heap_[i] = {weights[i], static_cast<Index>(i)}, position_[i] = static_cast<Index>(i);
+    for (std::size_t i = 0; i < heap_.size(); ++i)
+      heap_[i] = {weights[i], original[i], static_cast<Index>(i)}, position_[i] = static_cast<Index>(i);
     for (std::size_t i = heap_.size() / kArity + 1; i-- > 0;) sift_down(i);
   }
   std::size_t size() const { return heap_.size(); }
   Index pop() {
-    const Index top = heap_.front().index;
+    const Index top = heap_.front().id;
     heap_.front() = heap_.back();
-    position_[heap_.front().index] = 0;
+    position_[heap_.front().id] = 0;
     heap_.pop_back();
     if (!heap_.empty()) sift_down(0);
     position_[top] = kRemoved;
@@ -65,8 +59,8 @@ class EliminationHeap {
  private:
   struct alignas(16) Entry {
     double weight;
-    Index index;
-    bool above(const Entry& o) const { return weight > o.weight || (weight == o.weight && index > o.index); }
+    Index original, id;
+    bool above(const Entry& o) const { return weight > o.weight || (weight == o.weight && original > o.original); }
   };
   static constexpr std::size_t kArity = 4;
   static constexpr Index kRemoved = std::numeric_limits<Index>::max();
@@ -81,69 +75,15 @@ class EliminationHeap {
         if (heap_[c].above(heap_[best])) best = c;
       if (!heap_[best].above(item)) break;
       heap_[i] = heap_[best];
-      position_[heap_[i].index] = static_cast<Index>(i);
+      position_[heap_[i].id] = static_cast<Index>(i);
       i = best;
     }
     heap_[i] = item;
-    position_[item.index] = static_cast<Index>(i);
+    position_[item.id] = static_cast<Index>(i);
   }
   std::vector<Index> position_;
   std::vector<Entry> heap_;
 };
-
-/// Area of each sample: its Voronoi cell among its neighbours (with agreeing normals) in its
-/// tangent plane, clipped to a disk of radius `bound` (where the surface folds away, as at a thin
-/// edge, no neighbour closes the cell), then all scaled so that they sum to `total`.
-std::vector<double> tangent_voronoi_areas(const OrientedSamples& samples, double total, double bound,
-                                          const NormalRule& rule) {
-  const PointIndex index(samples.points);
-  const std::size_t k = std::min<std::size_t>(16, samples.size());
-  std::vector<double> areas(samples.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256), [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<Eigen::Vector2d> polygon, clipped;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const Vec3& n = samples.normals[i];
-      const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-      const Vec3 u = n.cross(helper).normalized(), v = n.cross(u);
-      polygon.clear();
-      for (int a = 0; a < 16; ++a)
-        polygon.emplace_back(bound * std::cos(a * kPi / 8), bound * std::sin(a * kPi / 8));
-      for (const auto& [j, d] : index.k_nearest(samples.points[i], k)) {
-        if (j == i || !rule.agree(n, samples.normals[j])) continue;
-        const Vec3 q = samples.points[j] - samples.points[i];
-        const Eigen::Vector2d w(q.dot(u), q.dot(v));
-        const double c = 0.5 * w.squaredNorm();
-        if (!(c > 0)) continue;
-        // Keep the half-plane x·w ≤ |w|²/2 (the side of sample i).
-        clipped.clear();
-        for (std::size_t a = 0; a < polygon.size(); ++a) {
-          const Eigen::Vector2d& p0 = polygon[a];
-          const Eigen::Vector2d& p1 = polygon[(a + 1) % polygon.size()];
-          const double s0 = p0.dot(w) - c, s1 = p1.dot(w) - c;
-          if (s0 <= 0) clipped.push_back(p0);
-          if ((s0 < 0) != (s1 < 0) && s0 != s1) clipped.push_back(p0 + (s0 / (s0 - s1)) * (p1 - p0));
-        }
-        polygon.swap(clipped);
-        if (polygon.size() < 3) break;
-      }
-      double twice = 0;
-      for (std::size_t a = 0; a < polygon.size(); ++a) {
-        const Eigen::Vector2d& p0 = polygon[a];
-        const Eigen::Vector2d& p1 = polygon[(a + 1) % polygon.size()];
-        twice += p0.x() * p1.y() - p1.x() * p0.y();
-      }
-      areas[i] = polygon.size() < 3 ? 0.0 : 0.5 * std::abs(twice);
-    }
-  });
-  double sum = 0;
-  for (double a : areas) sum += a;
-  if (!(sum > 0)) {
-    areas.assign(samples.size(), total / static_cast<double>(samples.size()));
-    return areas;
-  }
-  for (double& a : areas) a *= total / sum;
-  return areas;
-}
 
 OrientedSamples select(const OrientedSamples& candidates, const std::vector<Index>& chosen) {
   OrientedSamples out;
@@ -193,19 +133,18 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
   const double r_max = poisson_packing_distance(area, count);  // 2·r_max of the paper
   const double r_min =
       r_max * 0.65 * (1.0 - std::pow(static_cast<double>(count) / static_cast<double>(candidates.size()), 1.5));
-  const auto weight = [&](double d) { return std::pow(1.0 - std::max(d, r_min) / r_max, 8.0); };
+  const poisson_detail::EliminationWeight weight(r_min, r_max);
 
   // Each candidate's weight: the sum over its neighbours closer than r_max (closest first).
-  const poisson_detail::NeighbourLists near = poisson_detail::neighbours_within(
-      candidates.points, r_max, [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); },
-      weight);
+  const poisson_detail::NeighbourGraph near =
+      poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight);
   std::vector<double> weights(candidates.size(), 0.0);
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
     for (std::size_t k = near.offset[i]; k < near.offset[i + 1]; ++k) weights[i] += near.value[k];
   });
   // The candidate with the most crowded neighbourhood goes first (sequential: each removal
   // changes its neighbours' weights).
-  EliminationHeap heap(weights);
+  EliminationHeap heap(weights, near.original);
   while (heap.size() > count) {
     const Index removed = heap.pop();
     for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
@@ -214,9 +153,10 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
   std::vector<Index> kept;
   kept.reserve(count);
   for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (heap.contains(static_cast<Index>(i))) kept.push_back(static_cast<Index>(i));
+    if (heap.contains(static_cast<Index>(i))) kept.push_back(near.original[i]);
+  std::sort(kept.begin(), kept.end());
   OrientedSamples out = select(candidates, kept);
-  out.areas = tangent_voronoi_areas(out, area, 0.75 * r_max, rule);
+  out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * r_max, rule);
   return out;
 }
 
@@ -240,7 +180,7 @@ OrientedSamples poisson_by_radius(const SurfaceMesh& mesh, double radius, std::m
   const std::vector<Index> kept = poisson_detail::dart_throwing(
       candidates.points, radius, [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); });
   OrientedSamples out = select(candidates, kept);
-  out.areas = tangent_voronoi_areas(out, area, 0.75 * radius / 0.7, rule);
+  out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * radius / 0.7, rule);
   return out;
 }
 

@@ -1,6 +1,8 @@
 // Poisson-disk sampling service: exact count, minimum distances, coverage, areas, determinism
 // (across seeds and thread counts).
 #include "conditioning_test_support.hpp"
+// Private to the service: the areas with a chosen grid, to compare its two searches.
+#include "../../framework/services/poisson_areas.hpp"
 
 #include <medax/services/closest_point.hpp>
 #include <medax/services/kdtree.hpp>
@@ -8,7 +10,9 @@
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
 
+#include <cmath>
 #include <numeric>
+#include <set>
 
 using namespace medax;
 using namespace medax::services;
@@ -152,5 +156,102 @@ TEST_CASE("Poisson-disk sampling gives the same samples with 1 and 2 threads", "
     CHECK(runs[0].points == runs[1].points);
     CHECK(runs[0].normals == runs[1].normals);
     CHECK(runs[0].areas == runs[1].areas);
+  }
+}
+
+namespace {
+
+/// Weighted sample elimination as Yuksel 2015 states it, in the plainest form (all pairs, an
+/// ordered set as the priority queue): the reference the service's grid neighbour lists and
+/// elimination must reproduce bit for bit. Returns the kept candidates, ascending.
+std::vector<Index> reference_elimination(const OrientedSamples& candidates, double area, std::size_t count) {
+  const std::size_t m = candidates.size();
+  const double r_max = poisson_packing_distance(area, count);
+  const double r_min = r_max * 0.65 * (1.0 - std::pow(static_cast<double>(count) / static_cast<double>(m), 1.5));
+  const double min_dot = std::cos(120.0 * 3.14159265358979323846 / 180.0);
+  // Each candidate's neighbours closer than r_max with agreeing normals, closest first (ties by
+  // index), and their weights.
+  std::vector<std::vector<std::pair<Index, double>>> near(m);
+  std::vector<double> weight(m, 0.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    std::vector<std::pair<double, Index>> found;
+    for (std::size_t j = 0; j < m; ++j) {
+      const Vec3 d = candidates.points[i] - candidates.points[j];
+      const double d2 = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+      if (j != i && std::sqrt(d2) < r_max && candidates.normals[i].dot(candidates.normals[j]) > min_dot)
+        found.emplace_back(d2, static_cast<Index>(j));
+    }
+    std::sort(found.begin(), found.end());
+    for (const auto& [d2, j] : found) {
+      const double w = std::pow(1.0 - std::max(std::sqrt(d2), r_min) / r_max, 8.0);
+      near[i].emplace_back(j, w);
+      weight[i] += w;
+    }
+  }
+  // Remove the heaviest (ties: the larger index) until `count` remain, lowering its neighbours.
+  std::set<std::pair<double, Index>> queue;
+  for (std::size_t i = 0; i < m; ++i) queue.emplace(weight[i], static_cast<Index>(i));
+  std::vector<bool> removed(m, false);
+  while (queue.size() > count) {
+    const Index top = std::prev(queue.end())->second;
+    queue.erase(std::prev(queue.end()));
+    removed[top] = true;
+    for (const auto& [j, w] : near[top]) {
+      if (removed[j]) continue;
+      queue.erase({weight[j], j});
+      weight[j] -= w;
+      queue.emplace(weight[j], j);
+    }
+  }
+  std::vector<Index> kept;
+  for (std::size_t i = 0; i < m; ++i)
+    if (!removed[i]) kept.push_back(static_cast<Index>(i));
+  return kept;
+}
+
+}  // namespace
+
+TEST_CASE("Poisson-disk by count keeps exactly the samples of the plain sequential elimination", "[sampling]") {
+  // Small inputs where an all-pairs search is cheap; 1, 2 and 4 threads. A torus (curved, with
+  // the normal rule at work across its hole) and fandisk (sharp edges, flat regions where many
+  // weights are equal).
+  const std::vector<std::pair<SurfaceMesh, std::size_t>> cases = {
+      {testing::make_torus(1.0, 0.3, 32, 16), 300}, {read_mesh(test::corpus_mesh("fandisk.off")), 400}};
+  for (const auto& [mesh, count] : cases) {
+    for (std::uint64_t seed : {1u, 2u}) {
+      std::mt19937_64 candidate_rng(seed);
+      const OrientedSamples candidates = sample_uniform(mesh, 5 * count, candidate_rng);
+      const std::vector<Index> kept = reference_elimination(candidates, surface_area(mesh), count);
+      for (int threads : {1, 2, 4}) {
+        INFO("count " << count << ", seed " << seed << ", " << threads << " threads");
+        std::mt19937_64 rng(seed);
+        PoissonDiskOptions options;
+        options.max_threads = threads;
+        const OrientedSamples s = sample_poisson_count(mesh, count, rng, options);
+        REQUIRE(s.size() == kept.size());
+        std::size_t same = 0;
+        for (std::size_t k = 0; k < kept.size(); ++k)
+          same += s.points[k] == candidates.points[kept[k]] && s.normals[k] == candidates.normals[kept[k]];
+        CHECK(same == kept.size());
+      }
+    }
+  }
+}
+
+TEST_CASE("Poisson-disk areas: the grid search gives the k-d tree's areas bit for bit", "[sampling]") {
+  // The areas clip each sample's tangent cell by its 16 nearest samples in a k-d tree's order; a
+  // grid finds them where it can vouch for the same list. Tiny cells send every sample through
+  // the k-d tree, 2 spacings part of them, 4 spacings nearly none.
+  const SurfaceMesh mesh = read_mesh(test::corpus_mesh("fandisk.off"));
+  const double area = surface_area(mesh);
+  std::mt19937_64 rng(3);
+  const OrientedSamples s = sample_poisson_count(mesh, 3000, rng);
+  const double bound = 0.75 * poisson_packing_distance(area, 3000);
+  const poisson_detail::NormalRule rule(120.0);
+  const std::vector<double> kdtree = poisson_detail::tangent_voronoi_areas(s, area, bound, rule, 1e-3);
+  CHECK(kdtree == s.areas);
+  for (double cells : {2.0, 4.0}) {
+    INFO(cells << " spacings");
+    CHECK(poisson_detail::tangent_voronoi_areas(s, area, bound, rule, cells) == kdtree);
   }
 }

@@ -1,0 +1,116 @@
+#include "poisson_grid.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+
+namespace medax::services::poisson_detail {
+
+namespace {
+
+/// Spreads the low 21 bits of x to every third bit (one axis of a Morton code).
+std::uint64_t spread_bits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+}  // namespace
+
+CellGrid::CellGrid(const std::vector<Vec3>& points, double side) {
+  if (points.empty()) {
+    start_.push_back(0);
+    build_table();
+    return;
+  }
+  lo_ = points.front();
+  Vec3 hi = lo_;
+  for (const Vec3& p : points) lo_ = lo_.cwiseMin(p), hi = hi.cwiseMax(p);
+  side_ = std::max(side, (hi - lo_).maxCoeff() / static_cast<double>(kAxisCells - 2));
+  // Sorted by (Morton code, index): neighbouring cells are mostly close in the order.
+  std::vector<std::pair<std::uint64_t, Index>> morton(points.size());
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+    const auto c = cell_of(points[i]);
+    morton[i] = {spread_bits(c[0]) << 2 | spread_bits(c[1]) << 1 | spread_bits(c[2]), static_cast<Index>(i)};
+  });
+  tbb::parallel_sort(morton.begin(), morton.end());
+  order_.resize(points.size());
+  for (std::size_t k = 0; k < morton.size(); ++k) {
+    order_[k] = morton[k].second;
+    if (k == 0 || morton[k].first != morton[k - 1].first) {
+      start_.push_back(k);
+      keys_.push_back(pack(cell_of(points[order_[k]])));
+    }
+  }
+  start_.push_back(order_.size());
+  build_table();
+}
+
+std::vector<std::uint32_t> CellGrid::cell_of_points() const {
+  std::vector<std::uint32_t> cell(order_.size());
+  tbb::parallel_for(std::size_t{0}, cells(), [&](std::size_t c) {
+    for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) cell[order_[k]] = static_cast<std::uint32_t>(c);
+  });
+  return cell;
+}
+
+std::array<std::uint32_t, 27> CellGrid::around(std::size_t c) const {
+  const auto centre = coordinates(c);
+  std::array<std::uint32_t, 27> out;
+  int n = 0;
+  for (std::int64_t dx = -1; dx <= 1; ++dx)
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dz = -1; dz <= 1; ++dz) out[n++] = find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
+  return out;
+}
+
+Vec3 CellGrid::corner(std::size_t c) const {
+  const auto at = coordinates(c);
+  return lo_ + side_ * Vec3(static_cast<double>(at[0]), static_cast<double>(at[1]), static_cast<double>(at[2]));
+}
+
+std::array<std::int64_t, 3> CellGrid::coordinates(std::size_t c) const {
+  const std::uint64_t k = keys_[c], mask = kAxisCells - 1;
+  return {static_cast<std::int64_t>(k >> (2 * kBits)), static_cast<std::int64_t>((k >> kBits) & mask),
+          static_cast<std::int64_t>(k & mask)};
+}
+
+std::array<std::int64_t, 3> CellGrid::cell_of(const Vec3& p) const {
+  return {static_cast<std::int64_t>((p.x() - lo_.x()) / side_), static_cast<std::int64_t>((p.y() - lo_.y()) / side_),
+          static_cast<std::int64_t>((p.z() - lo_.z()) / side_)};
+}
+
+std::uint32_t CellGrid::find(const std::array<std::int64_t, 3>& cell) const {
+  for (std::int64_t x : cell)
+    if (x < 0 || x >= kAxisCells) return kNone;
+  const std::uint64_t key = pack(cell);
+  for (std::size_t slot = hash(key);; slot = (slot + 1) & mask_) {
+    const std::uint32_t c = table_[slot];
+    if (c == kNone || keys_[c] == key) return c;
+  }
+}
+
+std::uint64_t CellGrid::pack(const std::array<std::int64_t, 3>& c) {
+  return (static_cast<std::uint64_t>(c[0]) << (2 * kBits)) | (static_cast<std::uint64_t>(c[1]) << kBits) |
+         static_cast<std::uint64_t>(c[2]);
+}
+
+void CellGrid::build_table() {
+  int bits = 4;
+  while ((std::size_t{1} << bits) < 2 * keys_.size()) ++bits;
+  shift_ = 64 - bits;
+  mask_ = (std::size_t{1} << bits) - 1;
+  table_.assign(std::size_t{1} << bits, kNone);
+  for (std::size_t c = 0; c < keys_.size(); ++c) {
+    std::size_t slot = hash(keys_[c]);
+    while (table_[slot] != kNone) slot = (slot + 1) & mask_;
+    table_[slot] = static_cast<std::uint32_t>(c);
+  }
+}
+
+}  // namespace medax::services::poisson_detail

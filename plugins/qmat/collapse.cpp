@@ -4,6 +4,8 @@
 #include "collapse_queue.hpp"
 #include "flip_test.hpp"
 
+#include <medax/services/blocks.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +17,7 @@ namespace {
 
 constexpr double kSingular = 1e-12;  // |det A| at or below this is singular (authors' code)
 constexpr double kFlipPenalty = 1e9;  // added to E when every candidate flips a face
+constexpr std::size_t kCostBlock = 1024;  // vertices per parallel block of the first costing
 
 using Entry = QueuedCollapse;
 
@@ -32,12 +35,12 @@ class Simplifier {
         stamps_(medial.num_vertices(), 0),
         generators_(medial.generators),
         flip_test_(mesh_),
-        queue_([this](Index lo, Index hi, std::uint32_t stamp_lo, std::uint32_t stamp_hi) {
-          return stale(lo, hi, stamp_lo, stamp_hi);
-        }) {
+        queue_(stamps_) {
     InitialQuadrics q = initial_quadrics(mesh_, options_);
     slab_ = std::move(q.slab);
     add_ = std::move(q.add);
+    has_add_.resize(add_.size());
+    for (std::size_t v = 0; v < add_.size(); ++v) has_add_[v] = !(add_[v].A.array() == 0).all();
     invalid_faces_ = q.invalid_faces;
     // Parity with the authors' connection program: the queue is costed before the marking.
     if (options_.stale_saved_costs) queue_all_edges();
@@ -50,12 +53,11 @@ class Simplifier {
   MedialComplex output(const MedialComplex& input) const;
 
  private:
-  bool stale(Index lo, Index hi, std::uint32_t stamp_lo, std::uint32_t stamp_hi) const {
-    return !mesh_.alive(lo) || !mesh_.alive(hi) || stamps_[lo] != stamp_lo || stamps_[hi] != stamp_hi;
-  }
-  std::optional<Entry> evaluate(Index i, Index j);
-  Vec4 optimal_sphere(Index i, Index j, double& error);
-  Vec4 cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error);
+  // A vertex's stamp moves on when it moves or dies, so this also tells dead ends.
+  bool stale(const Entry& e) const { return stamps_[e.lo] != e.stamp_lo || stamps_[e.hi] != e.stamp_hi; }
+  std::optional<Entry> evaluate(Index i, Index j, FlipTest& flips) const;
+  Vec4 optimal_sphere(Index i, Index j, FlipTest& flips, double& error) const;
+  Vec4 cheapest(Index i, Index j, const SlabQuadric& q, FlipTest* flips, double& error) const;
   bool contractible(Index i, Index j) const;
   bool guard_refuses(Index i, Index j) const;
   bool link_condition(Index i, Index j) const;
@@ -67,6 +69,7 @@ class Simplifier {
   double unit_;
   CollapseMesh mesh_;
   std::vector<SlabQuadric> slab_, add_;
+  std::vector<char> has_add_;  // add_[v].A has a nonzero entry
   std::vector<char> saved_;
   std::vector<std::uint32_t> stamps_;
   std::vector<std::vector<Index>> generators_;
@@ -76,41 +79,42 @@ class Simplifier {
   CollapseQueue queue_;
 };
 
-/// The cheapest of mᵢ, mⱼ and their mean under q, skipping flipping ones when asked; when every
-/// candidate flips, the cheapest plus the flip penalty.
-Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, bool avoid_flips, double& error) {
+/// The cheapest of mᵢ, mⱼ and their mean under q (ties: in that order), skipping flipping ones
+/// when asked; when every candidate flips, the cheapest plus the flip penalty. The candidates are
+/// tried from the cheapest on, so the flip test runs only until one passes (the errors are
+/// finite: finite spheres and quadrics).
+Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, FlipTest* flips, double& error) const {
   const Vec4 candidates[3] = {mesh_.spheres[i], mesh_.spheres[j], 0.5 * (mesh_.spheres[i] + mesh_.spheres[j])};
-  std::optional<Vec4> best;
-  std::optional<Vec4> best_any;
-  double best_error = 0, best_any_error = 0;
-  for (const Vec4& m : candidates) {
-    const double e = q(m);
-    if (!best_any || e < best_any_error) best_any = m, best_any_error = e;
-    if (avoid_flips && flip_test_.flips(i, j, centre_of(m))) continue;
-    if (!best || e < best_error) best = m, best_error = e;
-  }
-  if (best) {
-    error = best_error;
-    return *best;
-  }
-  error = best_any_error + kFlipPenalty;
-  return *best_any;
+  const double errors[3] = {q(candidates[0]), q(candidates[1]), q(candidates[2])};
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int a, int b) { return errors[a] < errors[b] || (errors[a] == errors[b] && a < b); });
+  for (int k : order)
+    if (!flips || !flips->flips(i, j, centre_of(candidates[k]))) {
+      error = errors[k];
+      return candidates[k];
+    }
+  error = errors[order[0]] + kFlipPenalty;
+  return candidates[order[0]];
 }
 
-/// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean.
-Vec4 Simplifier::optimal_sphere(Index i, Index j, double& error) {
+/// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean. The
+/// face count matters only when Q_e is singular; without add terms Q_e + add is Q_e plus zeros,
+/// whose determinant has the same magnitude, so it is not computed twice.
+Vec4 Simplifier::optimal_sphere(Index i, Index j, FlipTest& flips, double& error) const {
   const SlabQuadric qe = slab_[i] + slab_[j];
-  const bool faceless = mesh_.face_count(i, j) == 0;
-  if (!faceless && !(std::abs(qe.A.determinant()) > kSingular)) return cheapest(i, j, qe, options_.flip_test, error);
+  const bool invertible = qe.invertible(kSingular);
+  FlipTest* avoid = options_.flip_test ? &flips : nullptr;
+  if (!invertible && mesh_.face_count(i, j) != 0) return cheapest(i, j, qe, avoid, error);
   const SlabQuadric qa = qe + add_[i] + add_[j];
-  const std::optional<Vec4> m = qa.minimiser(kSingular);
+  const bool qa_invertible = has_add_[i] || has_add_[j] ? qa.invertible(kSingular) : invertible;
+  const std::optional<Vec4> m = qa_invertible ? qa.solution() : std::nullopt;
   const Vec4 sphere = m && m->w() > 0 ? *m : Vec4(0.5 * (mesh_.spheres[i] + mesh_.spheres[j]));
-  if (options_.flip_test && flip_test_.flips(i, j, centre_of(sphere))) return cheapest(i, j, qa, true, error);
+  if (avoid && flips.flips(i, j, centre_of(sphere))) return cheapest(i, j, qa, avoid, error);
   error = qa(sphere);
   return sphere;
 }
 
-std::optional<Entry> Simplifier::evaluate(Index i, Index j) {
+std::optional<Entry> Simplifier::evaluate(Index i, Index j, FlipTest& flips) const {
   if (saved_[i] && saved_[j]) return std::nullopt;  // two saved spheres never merge
   Entry e{0, std::min(i, j), std::max(i, j), 0, 0, Vec4::Zero()};
   e.stamp_lo = stamps_[e.lo];
@@ -120,7 +124,7 @@ std::optional<Entry> Simplifier::evaluate(Index i, Index j) {
     e.sphere = mesh_.spheres[saved_[i] ? i : j];  // collapse onto the saved sphere
     error = (slab_[i] + slab_[j])(e.sphere);
   } else {
-    e.sphere = optimal_sphere(i, j, error);
+    e.sphere = optimal_sphere(i, j, flips, error);
   }
   const double gamma = stability_ratio(mesh_.spheres[i], mesh_.spheres[j]);
   e.cost = (error + options_.stability_weight) * gamma * gamma;
@@ -158,17 +162,27 @@ bool Simplifier::contractible(Index i, Index j) const {
   return !options_.link_condition || link_condition(i, j);
 }
 
+/// Every edge's first cost depends only on the input, so blocks of vertices are costed in
+/// parallel, each with its own flip test, and queued in vertex order: the heap is the same as
+/// when costed in sequence, whatever the thread count.
 void Simplifier::queue_all_edges() {
-  for (Index i = 0; i < mesh_.size(); ++i)
-    for (Index j : mesh_.neighbours(i))
-      if (i < j)
-        if (auto e = evaluate(i, j)) queue_.push_unordered(*e);
+  const std::size_t n = mesh_.size();
+  std::vector<std::vector<Entry>> blocks(services::block_count(n, kCostBlock));
+  services::for_blocks(n, kCostBlock, options_.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    FlipTest flips(mesh_);
+    for (auto i = static_cast<Index>(begin); i < end; ++i)
+      for (Index j : mesh_.neighbours(i))
+        if (i < j)
+          if (auto e = evaluate(i, j, flips)) blocks[b].push_back(*e);
+  });
+  for (const std::vector<Entry>& block : blocks)
+    for (const Entry& e : block) queue_.push_unordered(e);
   queue_.heapify();
 }
 
 void Simplifier::queue_edges_of(Index v) {
   for (Index n : mesh_.neighbours(v))
-    if (auto e = evaluate(v, n)) queue_.push(*e);
+    if (auto e = evaluate(v, n, flip_test_)) queue_.push(*e);
 }
 
 void Simplifier::collapse(const Entry& e) {
@@ -179,12 +193,14 @@ void Simplifier::collapse(const Entry& e) {
   flip_test_.forget();
   slab_[keep] += slab_[gone];
   add_[keep] += add_[gone];
+  has_add_[keep] = has_add_[keep] || has_add_[gone];
   saved_[keep] = saved_[keep] || saved_[gone];
   if (!generators_.empty()) {
     generators_[keep].insert(generators_[keep].end(), generators_[gone].begin(), generators_[gone].end());
     generators_[gone].clear();
   }
   ++stamps_[keep];
+  ++stamps_[gone];
   queue_edges_of(keep);
 }
 
@@ -195,7 +211,7 @@ void Simplifier::run(std::size_t target, QmatReport& report, const std::function
   while (mesh_.live_vertices() > goal) {
     if (queue_.empty()) break;
     const Entry e = queue_.pop();
-    if (stale(e.lo, e.hi, e.stamp_lo, e.stamp_hi)) continue;
+    if (stale(e)) continue;
     if (options_.max_cost > 0 && e.cost > options_.max_cost) {
       report.stopped_by = "max_cost";
       break;

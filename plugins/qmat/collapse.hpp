@@ -30,6 +30,7 @@ struct QmatOptions {
   bool link_condition = false;      ///< also require the link condition (keeps the homotopy type)
   bool stale_saved_costs = false;   ///< parity: cost the queue before marking saved vertices
   double unit_length = 0;           ///< normalising length (0: bbox diagonal of the spheres)
+  bool parallel = true;             ///< cost the first queue in parallel (same result either way)
 };
 
 /// Quadrics before any collapse: the slab terms Q_v and the boundary/cone "add" terms.

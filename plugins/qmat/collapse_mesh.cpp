@@ -7,11 +7,6 @@ namespace medax::qmat {
 
 namespace {
 
-Tri sorted(Tri t) {
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 bool holds(const Tri& t, Index v) { return t[0] == v || t[1] == v || t[2] == v; }
 
 void insert_sorted(std::vector<Index>& list, Index v) {
@@ -50,8 +45,7 @@ void CollapseMesh::add_faces(const MedialComplex& medial) {
   reserve_per_vertex(vertex_faces_, medial.faces, 0);
   for (Index input = 0; input < medial.faces.size(); ++input) {
     const Tri& t = medial.faces[input];
-    const Tri key = sorted(t);
-    if (key[0] == key[1] || key[1] == key[2] || has_face(t[0], t[1], t[2])) continue;
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || has_face(t[0], t[1], t[2])) continue;
     const Index f = static_cast<Index>(faces_.size());
     faces_.push_back(t);
     source_face_.push_back(input);
@@ -104,12 +98,14 @@ std::vector<Index> CollapseMesh::common_neighbours(Index i, Index j) const {
 }
 
 bool CollapseMesh::has_face(Index a, Index b, Index c) const {
+  if (a == b || b == c || a == c) return false;  // face slots have three distinct corners
   Index scan = a;
   for (Index v : {b, c})
     if (vertex_faces_[v].size() < vertex_faces_[scan].size()) scan = v;
-  const Tri key = sorted({a, b, c});
-  for (Index f : vertex_faces_[scan])
-    if (face_alive_[f] && sorted(faces_[f]) == key) return true;
+  for (Index f : vertex_faces_[scan]) {
+    const Tri& t = faces_[f];
+    if (face_alive_[f] && holds(t, a) && holds(t, b) && holds(t, c)) return true;
+  }
   return false;
 }
 

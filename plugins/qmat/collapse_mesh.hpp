@@ -28,6 +28,8 @@ class CollapseMesh {
     for (Index f : vertex_faces_[v])
       if (face_alive_[f]) visit(f);
   }
+  /// The face slots that held v, live or not (check face_alive).
+  const std::vector<Index>& face_list(Index v) const { return vertex_faces_[v]; }
   bool has_faces(Index v) const;
   /// The number of live faces holding both i and j, and one of them in `some` when there is one.
   std::size_t face_count(Index i, Index j, Index* some = nullptr) const;

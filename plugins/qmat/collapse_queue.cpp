@@ -72,9 +72,7 @@ void CollapseQueue::heapify() {
 }
 
 void CollapseQueue::sweep_stale() {
-  auto live_end = std::partition(heap_.begin(), heap_.end(), [&](const Key& k) {
-    return !stale_(k.lo, k.hi, k.stamp_lo, k.stamp_hi);
-  });
+  auto live_end = std::partition(heap_.begin(), heap_.end(), [&](const Key& k) { return !stale(k); });
   for (auto it = live_end; it != heap_.end(); ++it) free_slots_.push_back(it->slot);
   heap_.erase(live_end, heap_.end());
   heapify();

@@ -1,7 +1,8 @@
 #pragma once
 // The lazy priority queue of Q-MAT's collapse loop. An entry is the collapse of edge (lo, hi)
-// costed when its endpoints had the given stamps; entries whose endpoint changed since are stale
-// and skipped by the caller. For speed (popping stale entries was a tenth of the work), the
+// costed when its endpoints had the given stamps; entries whose endpoint changed since (its
+// stamp moved on: the owner bumps a vertex's stamp when it moves or dies) are stale and skipped
+// by the caller. For speed (popping stale entries was a tenth of the work), the
 // heap is 4-ary over 32-byte keys, the optimal spheres live in a slot store beside it, the
 // first entries are heapified at once, and stale entries are swept out whenever the heap has
 // grown by a quarter since the last sweep (most entries go stale before they reach the top).
@@ -11,7 +12,6 @@
 #include <medax/geometry.hpp>
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace medax::qmat {
@@ -25,9 +25,8 @@ struct QueuedCollapse {
 
 class CollapseQueue {
  public:
-  /// `stale(lo, hi, stamp_lo, stamp_hi)` says an entry is out of date (used by the sweeps).
-  using StaleTest = std::function<bool(Index, Index, std::uint32_t, std::uint32_t)>;
-  explicit CollapseQueue(StaleTest stale) : stale_(std::move(stale)) {}
+  /// `stamps` (one per vertex, owned by the caller) tells stale entries apart in the sweeps.
+  explicit CollapseQueue(const std::vector<std::uint32_t>& stamps) : stamps_(stamps) {}
 
   void push(const QueuedCollapse& c);
   /// Adds an entry without ordering the heap; call heapify() before the next pop or push.
@@ -51,12 +50,13 @@ class CollapseQueue {
     if (a.lo != b.lo) return a.lo > b.lo;
     return a.hi > b.hi;
   }
+  bool stale(const Key& k) const { return stamps_[k.lo] != k.stamp_lo || stamps_[k.hi] != k.stamp_hi; }
   std::uint32_t store(const Vec4& sphere);
   void sift_up(std::size_t at);
   void sift_down(std::size_t at);
   void sweep_stale();
 
-  StaleTest stale_;
+  const std::vector<std::uint32_t>& stamps_;
   std::vector<Key> heap_;
   std::vector<Vec4> spheres_;
   std::vector<std::uint32_t> free_slots_;

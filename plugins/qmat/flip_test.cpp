@@ -1,12 +1,14 @@
 #include "flip_test.hpp"
 
+#include <utility>
+
 namespace medax::qmat {
 
 namespace {
 constexpr double kSliver = 1e-6;  // sine of a face's angle below which it has no normal
 }
 
-const FlipTest::Fan& FlipTest::fan_of(Index v) {
+FlipTest::Fan& FlipTest::fan_of(Index v) {
   for (int s = 0; s < 2; ++s)
     if (slots_[s].vertex == v) {
       next_slot_ = 1 - s;
@@ -15,27 +17,53 @@ const FlipTest::Fan& FlipTest::fan_of(Index v) {
   Fan& fan = slots_[next_slot_];
   next_slot_ = 1 - next_slot_;
   fan.vertex = v;
-  fan.corners.clear();
+  fan.next_face = 0;
+  fan.count = 0;
+  return fan;
+}
+
+/// Whether the face of corner c (around the moving end) turns by more than 90° when that end
+/// goes to `centre`; a face holding the edge's other end vanishes and is not tested.
+bool FlipTest::turns(const Corner& c, Index other, const Vec3& centre) {
+  return c.va != other && c.vb != other && c.normal.dot((c.a - centre).cross(c.b - centre)) < 0;
+}
+
+bool FlipTest::any_flip(Fan& fan, Index other, const Vec3& centre) const {
+  for (std::size_t k = 0; k < fan.count; ++k)
+    if (turns(fan.corners[k], other, centre)) {
+      std::swap(fan.corners[0], fan.corners[k]);  // the next candidate is likely to turn it too
+      return true;
+    }
+  return gather_until_flip(fan, other, centre);
+}
+
+/// Gathers the fan's remaining faces, testing each as it comes, up to the first that turns.
+/// Slivers (the Voronoi axis has many, from nearly coincident vertices) have no normal to turn
+/// and are left out.
+bool FlipTest::gather_until_flip(Fan& fan, Index other, const Vec3& centre) const {
+  const Index v = fan.vertex;
+  const std::vector<Index>& faces = mesh_.face_list(v);
+  if (fan.corners.size() < faces.size()) fan.corners.resize(faces.size());
   const Vec3 p = centre_of(mesh_.spheres[v]);
-  mesh_.for_each_face(v, [&](Index f) {
+  while (fan.next_face < faces.size()) {
+    const Index f = faces[fan.next_face++];
+    if (!mesh_.face_alive(f)) continue;
     const Tri& t = mesh_.face(f);
     const int at = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-    Corner& c = fan.corners.emplace_back();  // filled in place: the gathering is the hot loop
+    Corner& c = fan.corners[fan.count];  // filled in place: the gathering is a hot loop
     c.va = t[(at + 1) % 3];
     c.vb = t[(at + 2) % 3];
     c.a = centre_of(mesh_.spheres[c.va]);
     c.b = centre_of(mesh_.spheres[c.vb]);
     const Vec3 e1 = c.a - p, e2 = c.b - p;
     c.normal = e1.cross(e2);
-    // A sliver (the Voronoi axis has many, from nearly coincident vertices) has no normal to flip.
-    if (!(c.normal.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) fan.corners.pop_back();
-  });
-  return fan;
-}
-
-bool FlipTest::any_flip(const Fan& fan, Index other, const Vec3& centre) {
-  for (const Corner& c : fan.corners)
-    if (c.va != other && c.vb != other && c.normal.dot((c.a - centre).cross(c.b - centre)) < 0) return true;
+    if (!(c.normal.squaredNorm() > kSliver * kSliver * e1.squaredNorm() * e2.squaredNorm())) continue;
+    const std::size_t k = fan.count++;
+    if (turns(c, other, centre)) {
+      std::swap(fan.corners[0], fan.corners[k]);
+      return true;
+    }
+  }
   return false;
 }
 

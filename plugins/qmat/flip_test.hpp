@@ -3,8 +3,10 @@
 // normal of a face around them (one that does not vanish, i.e. does not hold both) by more
 // than 90°? Each evaluation of an edge tests up to four candidate centres, and the edges of a
 // merged vertex are evaluated one after another, so the faces around a vertex are gathered
-// once into a "fan" (its two other corners and the face's current normal, slivers left out)
-// and kept until the mesh changes. The arithmetic is the same as testing face by face.
+// into a "fan" (its two other corners and the face's current normal, slivers left out) that is
+// kept until the mesh changes. A fan is gathered lazily, face by face, only as far as a test
+// needs (most tests stop at the first flipping face), and the face that flipped last is tested
+// first. The answer does not depend on the order; the arithmetic is that of testing face by face.
 #include "collapse_mesh.hpp"
 
 #include <array>
@@ -29,10 +31,14 @@ class FlipTest {
   };
   struct Fan {
     Index vertex = kNone;
+    std::size_t next_face = 0;    ///< position in the vertex's face list gathered up to
+    std::size_t count = 0;        ///< corners[0, count) are gathered (the storage is reused)
     std::vector<Corner> corners;
   };
-  const Fan& fan_of(Index v);
-  static bool any_flip(const Fan& fan, Index other, const Vec3& centre);
+  Fan& fan_of(Index v);
+  static bool turns(const Corner& c, Index other, const Vec3& centre);
+  bool any_flip(Fan& fan, Index other, const Vec3& centre) const;
+  bool gather_until_flip(Fan& fan, Index other, const Vec3& centre) const;
 
   const CollapseMesh& mesh_;
   std::array<Fan, 2> slots_;

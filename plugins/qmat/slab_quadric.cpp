@@ -52,8 +52,7 @@ Vec4 solve_partial_pivot(Mat4 A, Vec4 x) {
   return x;
 }
 
-std::optional<Vec4> SlabQuadric::minimiser(double singular) const {
-  if (!(std::abs(A.determinant()) > singular)) return std::nullopt;
+std::optional<Vec4> SlabQuadric::solution() const {
   const Vec4 m = solve_partial_pivot(A, b);
   if (!m.allFinite()) return std::nullopt;
   return m;

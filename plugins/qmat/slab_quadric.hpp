@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <cmath>
 #include <optional>
 
 namespace medax::qmat {
@@ -39,8 +40,14 @@ struct SlabQuadric {
     return *this;
   }
   friend SlabQuadric operator+(SlabQuadric a, const SlabQuadric& o) { return a += o; }
-  /// The minimiser (A m = b), or nothing when |det A| ≤ `singular` (the authors' 1e-12).
-  std::optional<Vec4> minimiser(double singular) const;
+  /// Whether |det A| > `singular` (the authors' test, 1e-12, for a usable minimiser).
+  bool invertible(double singular) const { return std::abs(A.determinant()) > singular; }
+  /// The solution of A m = b when it is finite; call only when A is invertible.
+  std::optional<Vec4> solution() const;
+  /// The minimiser (A m = b), or nothing when |det A| ≤ `singular`.
+  std::optional<Vec4> minimiser(double singular) const {
+    return invertible(singular) ? solution() : std::nullopt;
+  }
 };
 
 /// x with A x = b by partial-pivot LU, bit for bit what Eigen's A.partialPivLu().solve(b)

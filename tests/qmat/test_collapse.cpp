@@ -10,6 +10,7 @@
 #include <medax/union_find.hpp>
 
 #include <catch2/catch.hpp>
+#include <tbb/global_control.h>
 
 #include <set>
 
@@ -211,6 +212,19 @@ TEST_CASE("deterministic, and invariant to a uniform scale of the input", "[qmat
   CHECK(by3.num_vertices() == once.num_vertices());
   const double error = surface_to_envelope(once, joint), error3 = surface_to_envelope(scaled(by3, 1.0 / 3.0), joint);
   CHECK(error3 == Approx(error).epsilon(0.25));
+}
+
+TEST_CASE("the first costing in parallel gives the sequential result bit for bit, whatever the thread count",
+          "[qmat][collapse]") {
+  const MedialComplex axis = test::voronoi_axis("torus.obj");
+  REQUIRE(axis.num_vertices() > 4000);  // several blocks of the parallel costing
+  QmatOptions sequential = to(80);
+  sequential.parallel = false;
+  const MedialComplex reference = simplify(axis, {}, sequential, nullptr);
+  for (int threads : {1, 2, 3}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    check_same(simplify(axis, {}, to(80), nullptr), reference, 1.0, 0.0);
+  }
 }
 
 TEST_CASE("the shrinking-ball correction moves perturbed spheres back onto a capsule's axis",

@@ -59,71 +59,86 @@ using Polygons = std::vector<std::vector<std::size_t>>;
 /// coordinates, or 4 homogeneous ones for 4OFF; colours, normals and texture coordinates after
 /// them are ignored) and face (corner count, indices in range) with its line. Binary OFF and nOFF
 /// are refused.
+/// The OFF keyword line, if any: the coordinates per vertex (3, or 4 for 4OFF); leaves `t` on
+/// the tokens of the counts line and returns where the counts start in it.
+std::size_t read_off_keyword(const fs::path& path, Lines& lines, std::vector<std::string_view>& t,
+                             std::size_t& dimension) {
+  dimension = 3;
+  if (!lines.next(t)) fail(path, "the file holds only blank lines and comments; an OFF file starts with 'OFF'");
+  if (t[0].size() < 3 || t[0].substr(t[0].size() - 3) != "OFF") return 0;
+  const std::string_view keyword = t[0];
+  if (keyword.find('4') != std::string_view::npos) dimension = 4;
+  if (t.size() > 1 && t[1] == "BINARY")
+    fail(path, fmt::format("line {}: binary OFF is not supported; convert the mesh to ASCII OFF, PLY or STL "
+                           "(e.g. with meshlabserver or CGAL's write_OFF)",
+                           lines.line()));
+  if (keyword.find('n') != std::string_view::npos)
+    fail(path, fmt::format("line {}: '{}' (OFF with a dimension line) is not supported; write it as plain 'OFF' "
+                           "with 3 coordinates per vertex",
+                           lines.line(), keyword));
+  if (t.size() > 1) return 1;
+  if (!lines.next(t)) fail(path, "the file ends after 'OFF'; the counts 'vertices faces edges' are missing");
+  return 0;
+}
+
+void read_off_vertex(const fs::path& path, const std::vector<std::string_view>& t, std::size_t line, long long v,
+                     std::size_t dimension, std::vector<Point>& points) {
+  if (t.size() < dimension)
+    fail(path, fmt::format("line {}: vertex {} has {} coordinate(s); a vertex line is '{}'", line, v, t.size(),
+                           dimension == 3 ? "x y z" : "x y z w"));
+  double xyzw[4] = {0, 0, 0, 1};
+  for (std::size_t k = 0; k < dimension; ++k) xyzw[k] = coordinate(path, t[k], line, static_cast<std::size_t>(v));
+  points.emplace_back(xyzw[0] / xyzw[3], xyzw[1] / xyzw[3], xyzw[2] / xyzw[3]);
+}
+
+void read_off_face(const fs::path& path, const std::vector<std::string_view>& t, std::size_t line, long long f,
+                   long long nv, Polygons& polygons) {
+  long long n = 0;
+  if (!parse_integer(t[0], n) || n < 0)
+    fail(path, fmt::format("line {}: face {}: '{}' is not a corner count", line, f, t[0]));
+  if (static_cast<long long>(t.size()) - 1 < n)
+    fail(path, fmt::format("line {}: face {} announces {} corners but lists only {}", line, f, n, t.size() - 1));
+  if (n < 3) fail(path, fmt::format("line {}: face {} has {} corners; a face needs at least 3", line, f, n));
+  std::vector<std::size_t>& polygon = polygons.emplace_back();
+  for (long long k = 1; k <= n; ++k) {
+    long long index = 0;
+    if (!parse_integer(t[k], index))
+      fail(path, fmt::format("line {}: face {}: '{}' is not a vertex index", line, f, t[k]));
+    if (index < 0 || index >= nv)
+      fail(path, fmt::format("line {}: face {} refers to vertex {} but the vertices are 0..{}", line, f, index,
+                             nv - 1));
+    polygon.push_back(static_cast<std::size_t>(index));
+  }
+}
+
+/// ASCII OFF read here, not by CGAL (whose scanner trusts counts and turns out-of-range colours
+/// into undefined behaviour): header counts against the file size, then every vertex (3 finite
+/// coordinates, or 4 homogeneous ones for 4OFF; colours, normals and texture coordinates after
+/// them are ignored) and face (corner count, indices in range) with its line. Binary OFF and nOFF
+/// are refused.
 void read_off(const fs::path& path, const std::string& text, std::vector<Point>& points, Polygons& polygons) {
   Lines lines(text);
   std::vector<std::string_view> t;
-  if (!lines.next(t)) fail(path, "the file holds only blank lines and comments; an OFF file starts with 'OFF'");
-  std::size_t first = 0;
-  std::size_t dimension = 3;  // 4 for homogeneous coordinates (4OFF)
-  if (t[0].size() >= 3 && t[0].substr(t[0].size() - 3) == "OFF") {
-    const std::string_view keyword = t[0];
-    if (keyword.find('4') != std::string_view::npos) dimension = 4;
-    if (t.size() > 1 && t[1] == "BINARY")
-      fail(path, fmt::format("line {}: binary OFF is not supported; convert the mesh to ASCII OFF, PLY or STL "
-                             "(e.g. with meshlabserver or CGAL's write_OFF)",
-                             lines.line()));
-    if (keyword.find('n') != std::string_view::npos)
-      fail(path, fmt::format("line {}: '{}' (OFF with a dimension line) is not supported; write it as plain 'OFF' "
-                             "with 3 coordinates per vertex",
-                             lines.line(), keyword));
-    first = 1;
-    if (t.size() == 1) {
-      if (!lines.next(t)) fail(path, "the file ends after 'OFF'; the counts 'vertices faces edges' are missing");
-      first = 0;
-    }
-  }
+  std::size_t dimension = 3;
+  const std::size_t first = read_off_keyword(path, lines, t, dimension);
   long long nv = 0, nf = 0;
   if (t.size() < first + 2 || !parse_integer(t[first], nv) || !parse_integer(t[first + 1], nf) || nv < 0 || nf < 0)
     fail(path, fmt::format("line {}: expected the counts 'vertices faces edges' (whole numbers >= 0)", lines.line()));
   const std::uintmax_t rest = text.size() - lines.offset();
   // A vertex line takes at least 6 bytes ("0 0 0\n"), a face line 8 ("3 0 1 2\n"); binary takes more.
-  check_counts_fit(path, fmt::format("{} vertices and {} faces", nv, nf),
-                   6.0L * nv + 8.0L * nf - 1, rest);
-  for (long long v = 0; v < nv; ++v) {
+  check_counts_fit(path, fmt::format("{} vertices and {} faces", nv, nf), 6.0L * nv + 8.0L * nf - 1, rest);
+  const auto next_line = [&](const char* what, long long announced, long long read) {
     if (!lines.next(t))
-      fail(path, fmt::format("the header announces {} vertices but the file ends after {} (line {}): "
-                             "the file is truncated",
-                             nv, v, lines.line()));
-    if (t.size() < dimension)
-      fail(path, fmt::format("line {}: vertex {} has {} coordinate(s); a vertex line is '{}'", lines.line(), v,
-                             t.size(), dimension == 3 ? "x y z" : "x y z w"));
-    double xyzw[4] = {0, 0, 0, 1};
-    for (std::size_t k = 0; k < dimension; ++k)
-      xyzw[k] = coordinate(path, t[k], lines.line(), static_cast<std::size_t>(v));
-    points.emplace_back(xyzw[0] / xyzw[3], xyzw[1] / xyzw[3], xyzw[2] / xyzw[3]);
+      fail(path, fmt::format("the header announces {} {} but the file ends after {} (line {}): the file is truncated",
+                             announced, what, read, lines.line()));
+  };
+  for (long long v = 0; v < nv; ++v) {
+    next_line("vertices", nv, v);
+    read_off_vertex(path, t, lines.line(), v, dimension, points);
   }
   for (long long f = 0; f < nf; ++f) {
-    if (!lines.next(t))
-      fail(path, fmt::format("the header announces {} faces but the file ends after {} (line {}): "
-                             "the file is truncated",
-                             nf, f, lines.line()));
-    long long n = 0;
-    if (!parse_integer(t[0], n) || n < 0)
-      fail(path, fmt::format("line {}: face {}: '{}' is not a corner count", lines.line(), f, t[0]));
-    if (static_cast<long long>(t.size()) - 1 < n)
-      fail(path, fmt::format("line {}: face {} announces {} corners but lists only {}", lines.line(), f, n,
-                             t.size() - 1));
-    if (n < 3) fail(path, fmt::format("line {}: face {} has {} corners; a face needs at least 3", lines.line(), f, n));
-    std::vector<std::size_t>& polygon = polygons.emplace_back();
-    for (long long k = 1; k <= n; ++k) {
-      long long index = 0;
-      if (!parse_integer(t[k], index))
-        fail(path, fmt::format("line {}: face {}: '{}' is not a vertex index", lines.line(), f, t[k]));
-      if (index < 0 || index >= nv)
-        fail(path, fmt::format("line {}: face {} refers to vertex {} but the vertices are 0..{}", lines.line(), f,
-                               index, nv - 1));
-      polygon.push_back(static_cast<std::size_t>(index));
-    }
+    next_line("faces", nf, f);
+    read_off_face(path, t, lines.line(), f, nv, polygons);
   }
 }
 

@@ -130,64 +130,94 @@ void sync_folder(const fs::path& dir) {
 
 }  // namespace
 
-/// Checks the target, removes stale staging folders of killed runs into it, creates the staging
-/// folder and its log; throws a message that says which path, why, and what to do.
-RunFolder create_run_folder(const fs::path& dir) {
-  const std::string fix = "give a writable folder with --out";
-  RunFolder folder;
+namespace {
+
+constexpr const char* kGiveWritableFolder = "give a writable folder with --out";
+
+/// The folder a run publishes into: `dir` itself or where a link the user made points. A link
+/// left by a killed run is removed; one of a live run is refused.
+fs::path resolve_target(const fs::path& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw std::runtime_error(fmt::format("cannot use {} as the run folder: it exists and is not a folder; "
-                                         "remove it or {}", dir.string(), fix));
+                                         "remove it or {}", dir.string(), kGiveWritableFolder));
   const fs::path ancestor = existing_ancestor(dir.parent_path());
   if (!ancestor.empty() && !fs::is_directory(ancestor, ec))
     throw std::runtime_error(fmt::format("cannot create the run folder {}: {} is a file, not a folder; {}",
-                                         dir.string(), ancestor.string(), fix));
-  folder.target = plain_path(dir);
-  if (fs::is_symlink(folder.target, ec)) {
-    const fs::path to = fs::read_symlink(folder.target, ec);
-    const auto pid = ec ? std::nullopt : staging_pid(to.filename().string(), folder.target.filename().string());
-    if (pid && alive_elsewhere(*pid)) {
-      throw std::runtime_error(fmt::format("cannot use {} as the run folder: another medax run (process {}) is "
-                                           "writing into it; wait for it to end or give another folder with --out",
-                                           dir.string(), *pid));
-    } else if (pid) {
-      fs::remove(folder.target, ec);  // the live link of a killed run: its folder is removed below
-    } else {
-      folder.target = fs::canonical(folder.target, ec);  // a link the user made: publish where it points
-      if (ec)
-        throw std::runtime_error(fmt::format("cannot use {} as the run folder: it is a link that leads nowhere "
-                                             "({}); remove it or {}", dir.string(), ec.message(), fix));
-    }
+                                         dir.string(), ancestor.string(), kGiveWritableFolder));
+  fs::path target = plain_path(dir);
+  if (!fs::is_symlink(target, ec)) return target;
+  const fs::path to = fs::read_symlink(target, ec);
+  const auto pid = ec ? std::nullopt : staging_pid(to.filename().string(), target.filename().string());
+  if (pid && alive_elsewhere(*pid))
+    throw std::runtime_error(fmt::format("cannot use {} as the run folder: another medax run (process {}) is "
+                                         "writing into it; wait for it to end or give another folder with --out",
+                                         dir.string(), *pid));
+  if (pid) {
+    fs::remove(target, ec);  // the live link of a killed run: its folder is removed later
+    return target;
   }
-  const fs::path parent = folder.target.parent_path();
-  const std::string name = folder.target.filename().string();
-  if (fs::is_directory(folder.target, ec)) check_replaceable(folder.target, dir);
-  fs::create_directories(parent, ec);
+  target = fs::canonical(target, ec);  // a link the user made: publish where it points
   if (ec)
-    throw std::runtime_error(fmt::format("cannot create the run folder {}: {}; {}", dir.string(), ec.message(), fix));
-  // Staging folders left by runs that were killed (kill -9, power loss) before publishing.
+    throw std::runtime_error(fmt::format("cannot use {} as the run folder: it is a link that leads nowhere "
+                                         "({}); remove it or {}", dir.string(), ec.message(), kGiveWritableFolder));
+  return target;
+}
+
+/// Removes the staging folders that runs killed before publishing (kill -9, power loss) left
+/// beside the target; returns those removed.
+std::vector<std::string> remove_stale_staging(const fs::path& parent, const std::string& name) {
+  std::vector<std::string> removed;
+  std::error_code ec;
   for (const auto& entry : fs::directory_iterator(parent, ec)) {
     const auto pid = staging_pid(entry.path().filename().string(), name);
     if (!pid || alive_elsewhere(*pid)) continue;
-    std::error_code removed;
-    fs::remove_all(entry.path(), removed);
-    if (!removed) folder.removed.push_back(entry.path().string());
+    std::error_code failed;
+    fs::remove_all(entry.path(), failed);
+    if (!failed) removed.push_back(entry.path().string());
   }
+  return removed;
+}
+
+/// Creates the staging folder's log.txt, so that a folder nobody can write into is reported with
+/// its cause and fix (spdlog's message names neither).
+void create_log(const fs::path& staging, const fs::path& dir) {
+  const fs::path log_file = staging / "log.txt";
+  const int fd = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd >= 0) {
+    ::close(fd);
+    return;
+  }
+  const int err = errno;
+  std::error_code ec;
+  fs::remove_all(staging, ec);
+  throw std::runtime_error(fmt::format("cannot write into the run folder {}: creating {} failed: {}; {}",
+                                       dir.string(), log_file.filename().string(), std::strerror(err),
+                                       kGiveWritableFolder));
+}
+
+}  // namespace
+
+/// Checks the target, removes stale staging folders of killed runs into it, creates the staging
+/// folder and its log; throws a message that says which path, why, and what to do.
+RunFolder create_run_folder(const fs::path& dir) {
+  RunFolder folder;
+  folder.target = resolve_target(dir);
+  const fs::path parent = folder.target.parent_path();
+  const std::string name = folder.target.filename().string();
+  std::error_code ec;
+  if (fs::is_directory(folder.target, ec)) check_replaceable(folder.target, dir);
+  fs::create_directories(parent, ec);
+  if (ec)
+    throw std::runtime_error(
+        fmt::format("cannot create the run folder {}: {}; {}", dir.string(), ec.message(), kGiveWritableFolder));
+  folder.removed = remove_stale_staging(parent, name);
   folder.staging = parent / fmt::format("{}.partial-{}", name, ::getpid());
   if (!fs::create_directory(folder.staging, ec))
     throw std::runtime_error(fmt::format("cannot create the run folder {}: {}; {}", dir.string(),
-                                         ec ? ec.message() : std::string("the staging folder exists"), fix));
-  // spdlog's message names neither the cause nor the fix: open the log once ourselves first.
-  const fs::path log_file = folder.staging / "log.txt";
-  const int fd = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    const int err = errno;
-    fs::remove_all(folder.staging, ec);
-    throw std::runtime_error(fmt::format("cannot write into the run folder {}: creating {} failed: {}; {}",
-                                         dir.string(), log_file.filename().string(), std::strerror(err), fix));
-  }
-  ::close(fd);
+                                         ec ? ec.message() : std::string("the staging folder exists"),
+                                         kGiveWritableFolder));
+  create_log(folder.staging, dir);
   // A fresh target shows the run while it goes (its log can be followed at <out>/log.txt).
   if (!fs::exists(folder.target, ec) && !fs::is_symlink(folder.target, ec)) {
     fs::create_directory_symlink(folder.staging.filename(), folder.target, ec);

@@ -211,15 +211,17 @@ void check_identical(const DelaunayTetrahedralization& a, const DelaunayTetrahed
   CHECK(a.circumradii == b.circumradii);
 }
 
-/// The tetrahedralization with 1 and 2 threads and without TBB (inputs of 50k points or more take
-/// the concurrent path, whose last insertion rounds go in concurrently).
+/// The tetrahedralization with 1, 2 and 4 threads and without TBB (inputs of 50k points or more
+/// take the concurrent path, whose last insertion rounds go in concurrently).
 void check_thread_independent(const std::vector<Vec3>& p) {
   const auto two = delaunay_tetrahedralize(p, {true, 2});
   const auto one = delaunay_tetrahedralize(p, {true, 1});
   const auto again = delaunay_tetrahedralize(p, {true, 2});
+  const auto four = delaunay_tetrahedralize(p, {true, 4});
   const auto sequential = delaunay_tetrahedralize(p, {false});
   check_identical(two, one);
   check_identical(two, again);
+  check_identical(two, four);
   check_identical(two, sequential);
 }
 
@@ -293,4 +295,24 @@ TEST_CASE("Concurrent Delaunay under a global one-thread limit: the same tetrahe
   const auto two = delaunay_tetrahedralize(p, {true, 2});
   const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   check_identical(two, delaunay_tetrahedralize(p));
+}
+
+TEST_CASE("Concurrent Delaunay merges duplicates onto their lowest index, whatever the threads", "[geometry][delaunay]") {
+  // 60k random points, then every 37th point again at the end and point 5 once more in front of
+  // it: the copies share their original's vertex, which is named by the lowest index.
+  auto p = random_points(60000, 31);
+  for (std::size_t i = 0; i < 60000; i += 37) p.push_back(p[i]);
+  p[100] = p[5];
+  const auto dt = delaunay_tetrahedralize(p, {true, 2});
+  CHECK(dt.vertex_point.size() == 60000 - 1);  // p[100] merged into p[5]
+  CHECK(dt.point_vertex[100] == dt.point_vertex[5]);
+  CHECK(dt.vertex_point[dt.point_vertex[100]] == 5);
+  for (std::size_t i = 60000; i < p.size(); ++i) {
+    const Index original = static_cast<Index>((i - 60000) * 37);
+    CHECK(dt.point_vertex[i] == dt.point_vertex[original]);
+    CHECK(dt.vertex_point[dt.point_vertex[i]] == original);
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) CHECK(p[dt.vertex_point[dt.point_vertex[i]]] == p[i]);
+  check_structure(p, dt);
+  check_thread_independent(p);
 }

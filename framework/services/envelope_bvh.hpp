@@ -57,12 +57,12 @@ struct BvhNode {
 };
 
 /// The two children of an inner node, side by side, as the search reads them: their bounds (the
-/// fields of BvhNode, one lane per child) and where each leads. Both lower bounds come from one
-/// pass of two-lane arithmetic, each lane doing BvhNode::lower_bound's operations in its order, so
-/// the bounds are the same doubles.
+/// fields of BvhNode, one lane per child, widened to double) and where each leads. Both lower
+/// bounds come from one pass of two-lane arithmetic, each lane doing BvhNode::lower_bound's
+/// operations in its order, so the bounds are the same doubles.
 struct ChildPair {
   enum Row { kLo = 0, kHi = 3, kG = 6, kRmax = 9, kSlope = 10, kGamma = 11, kRows = 12 };
-  float lane[kRows][2];
+  double lane[kRows][2];  ///< the node's floats, widened once (not at every visit)
   std::uint32_t index[2];  ///< inner child: its pair's index; leaf child: its first primitive
   std::uint32_t count[2];  ///< leaf child: its number of primitives; inner child: 0
 
@@ -132,9 +132,7 @@ inline void ChildPair::set(int side, const BvhNode& child, std::uint32_t child_i
 
 #if defined(__SSE2__)
 inline void ChildPair::lower_bounds(const Vec3& x, double out[2]) const {
-  const auto row = [this](int r) {
-    return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lane[r]))));
-  };
+  const auto row = [this](int r) { return _mm_loadu_pd(lane[r]); };
   const __m128d zero = _mm_setzero_pd();
   __m128d d2 = zero, gx = zero;
   for (int k = 0; k < 3; ++k) {

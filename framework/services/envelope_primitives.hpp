@@ -45,6 +45,9 @@ struct ConeFrame {
 // is convex in t; its stationary point is t* = s + kρ/√(1−k²), where it equals
 // ρ√(1−k²) − r0 − k·s. When t* leaves [0, L] (or |k| ≥ 1) the minimum is at an end ball.
 template <bool kFull>
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
 inline double cone_value(const Vec3& x, const Vec3& c0, double r0, const Vec3& c1, double r1, const ConeFrame& f,
                          Eval* out) {
   const Vec3 w = x - c0;

@@ -177,12 +177,47 @@ std::vector<std::uint64_t> corner_keys(const std::vector<Cell>& cells, const Can
   return sorted_unique(corners, poll);
 }
 
+/// Where each grid point is among the sorted corner keys: an open-addressing hash of the keys (a
+/// lookup costs a hash and a probe or two instead of a binary search over every corner).
+class CornerIndex {
+ public:
+  explicit CornerIndex(const std::vector<std::uint64_t>& corners) : corners_(corners) {
+    int bits = 4;
+    while ((std::size_t{1} << bits) < 2 * corners.size()) ++bits;
+    shift_ = 64 - bits;
+    slots_.assign(std::size_t{1} << bits, kEmpty);
+    for (std::size_t c = 0; c < corners.size(); ++c) {
+      std::size_t slot = home(corners[c]);
+      while (slots_[slot] != kEmpty) slot = (slot + 1) & (slots_.size() - 1);
+      slots_[slot] = static_cast<std::uint32_t>(c);
+    }
+  }
+  const std::vector<std::uint64_t>& keys() const { return corners_; }
+  /// The index of grid point `key` among the corners, or corners.size() when it is not one.
+  std::size_t find(std::uint64_t key) const {
+    for (std::size_t slot = home(key);; slot = (slot + 1) & (slots_.size() - 1)) {
+      const std::uint32_t c = slots_[slot];
+      if (c == kEmpty) return corners_.size();
+      if (corners_[c] == key) return c;
+    }
+  }
+
+ private:
+  static constexpr std::uint32_t kEmpty = 0xffffffffu;
+  std::size_t home(std::uint64_t key) const {
+    return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift_);
+  }
+  const std::vector<std::uint64_t>& corners_;
+  std::vector<std::uint32_t> slots_;
+  int shift_ = 60;
+};
+
 /// The value at grid point z (key) of pass p < kLastLevel, from its neighbours on L_{p+1}, whose
 /// values are known: a neighbour far enough settles it by the Lipschitz bound (primitive −1,
 /// `settled`); otherwise the best of their primitives at z seeds the search (stopping at one that
 /// contains z, which settles the sign). `outside` receives the best lower bound on φ(z) the
 /// neighbours give (a value ≥ 0 of a neighbour is exact or a lower bound; φ is 1-Lipschitz).
-Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values,
+Hit from_parents(const EnvelopeBvh& bvh, const CornerIndex& corners, const std::vector<Hit>& values,
                  std::uint64_t key, const Vec3& z, double step, int pass, double pass_reach, bool& settled,
                  double& outside) {
   const auto [i, j, k] = unpack(key);
@@ -197,9 +232,9 @@ Hit from_parents(const EnvelopeBvh& bvh, const std::vector<std::uint64_t>& corne
     if (((a & 1) && !oi) || ((a & 2) && !oj) || ((a & 4) && !ok)) continue;
     const std::uint64_t parent = pack(oi ? i - s + ((a & 1) ? m : 0) : i, oj ? j - s + ((a & 2) ? m : 0) : j,
                                       ok ? k - s + ((a & 4) ? m : 0) : k);
-    const auto at = std::lower_bound(corners.begin(), corners.end(), parent);
-    if (at == corners.end() || *at != parent) continue;
-    const Hit& near = values[static_cast<std::size_t>(at - corners.begin())];
+    const std::size_t at = corners.find(parent);
+    if (at == values.size()) continue;
+    const Hit& near = values[at];
     if (near.d >= pass_reach + offset) {  // 1-Lipschitz: φ(z) ≥ φ(near) − offset ≥ reach
       settled = true;
       return Hit{near.d - offset, -1};
@@ -233,8 +268,9 @@ constexpr std::int64_t kUnsearched = -2;
 ///    A point of a later pass also tries the primitives found at its neighbours on L_{p+1}: one
 ///    that contains it settles its sign, and the smallest value seeds the search. A point of the
 ///    last pass that a neighbour's value proves outside is not searched here (kUnsearched).
-std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
+std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const CornerIndex& index,
                                const KnownValues& known, const CancelPoll& poll) {
+  const std::vector<std::uint64_t>& corners = index.keys();
   std::vector<Hit> values(corners.size());
   const double step = grid.step;
   for (int pass = kLastLevel; pass >= 0; --pass) {
@@ -255,7 +291,7 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
       if (pass < kLastLevel) {
         bool settled = false;
         double outside = -kInf;
-        start = from_parents(bvh, corners, values, corners[c], z, step, pass, pass_reach, settled, outside);
+        start = from_parents(bvh, index, values, corners[c], z, step, pass, pass_reach, settled, outside);
         if (settled) {
           values[c] = start;
           return;
@@ -273,22 +309,15 @@ std::vector<Hit> corner_values(const EnvelopeBvh& bvh, const Grid& grid, const s
   return values;
 }
 
-/// The index of grid point `key` among `corners` at or after `from` (sorted keys), or
-/// corners.size() when it is not a corner. The +k neighbour of corners[from − 1] is usually at `from`.
-std::size_t corner_index(const std::vector<std::uint64_t>& corners, std::size_t from, std::uint64_t key) {
-  if (from < corners.size() && corners[from] == key) return from;
-  const auto it = std::lower_bound(corners.begin() + std::min(from, corners.size()), corners.end(), key);
-  return it != corners.end() && *it == key ? static_cast<std::size_t>(it - corners.begin()) : corners.size();
-}
-
 /// 3. Every grid edge whose ends differ in sign crosses ∂E. The edges of each corner towards +i,
 ///    +j, +k are tested in parallel (a bit per axis), then listed in corner and axis order, the
 ///    order of a sequential scan.
-std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, const std::vector<Hit>& values,
+std::vector<Crossing> crossing_edges(const CornerIndex& index, const std::vector<Hit>& values,
                                     const CancelPoll& poll) {
-  const auto neighbour = [&corners](std::size_t c, int axis) {
+  const std::vector<std::uint64_t>& corners = index.keys();
+  const auto neighbour = [&](std::size_t c, int axis) {
     const auto [i, j, k] = unpack(corners[c]);
-    return corner_index(corners, c + 1, pack(i + (axis == 0), j + (axis == 1), k + (axis == 2)));
+    return index.find(pack(i + (axis == 0), j + (axis == 1), k + (axis == 2)));
   };
   std::vector<std::uint8_t> crossing_axes(corners.size(), 0);
   tbb::parallel_for(std::size_t{0}, corners.size(), [&](std::size_t c) {
@@ -313,8 +342,9 @@ std::vector<Crossing> crossing_edges(const std::vector<std::uint64_t>& corners, 
 /// 3. (cont.) The exact value and primitive at each crossing edge's outside end left unsearched
 ///    by corner_values: the search it would have made, from the same seed, so the boundary points
 ///    are those of searching every grid point. Most such points end no crossing edge.
-void exact_crossing_ends(const EnvelopeBvh& bvh, const Grid& grid, const std::vector<std::uint64_t>& corners,
+void exact_crossing_ends(const EnvelopeBvh& bvh, const Grid& grid, const CornerIndex& index,
                          const std::vector<Crossing>& crossings, std::vector<Hit>& values, const CancelPoll& poll) {
+  const std::vector<std::uint64_t>& corners = index.keys();
   std::vector<std::uint64_t> ends;
   for (const Crossing& e : crossings)
     if (values[e[0]].prim == kUnsearched) ends.push_back(e[0]);
@@ -328,7 +358,7 @@ void exact_crossing_ends(const EnvelopeBvh& bvh, const Grid& grid, const std::ve
     const Vec3 z = grid.point(key);
     bool settled = false;
     double outside = -kInf;
-    const Hit start = from_parents(bvh, corners, values, key, z, grid.step, 0, reach, settled, outside);
+    const Hit start = from_parents(bvh, index, values, key, z, grid.step, 0, reach, settled, outside);
     exact[e] = bvh.query(z, reach, 0.0, -kInf, start);
   });
   for (std::size_t e = 0; e < ends.size(); ++e) values[ends[e]] = exact[e];
@@ -416,7 +446,7 @@ std::vector<Vec3> sample_boundary_near(const EnvelopeBvh& bvh, double step, cons
     values[c] = bvh.query(z, reach, 0.0, -kInf, Hit{bvh.primitive(seed).value(z), seed});
   });
   EnvelopeSamples out;
-  crossing_points(bvh, grid, corners, values, crossing_edges(corners, values, poll), out, poll);
+  crossing_points(bvh, grid, corners, values, crossing_edges(CornerIndex(corners), values, poll), out, poll);
   return out.points;
 }
 
@@ -432,10 +462,11 @@ EnvelopeSamples sample_boundary(const EnvelopeBvh& bvh, double step, const std::
   const Grid grid(bvh, step);
   KnownValues known;
   const std::vector<std::uint64_t> corners = corner_keys(narrow_band(bvh, grid, known, report, poll), poll);
-  std::vector<Hit> values = corner_values(bvh, grid, corners, known, poll);
+  const CornerIndex index(corners);
+  std::vector<Hit> values = corner_values(bvh, grid, index, known, poll);
   report(0.8);
-  const std::vector<Crossing> crossings = crossing_edges(corners, values, poll);
-  exact_crossing_ends(bvh, grid, corners, crossings, values, poll);
+  const std::vector<Crossing> crossings = crossing_edges(index, values, poll);
+  exact_crossing_ends(bvh, grid, index, crossings, values, poll);
   report(0.9);
   crossing_points(bvh, grid, corners, values, crossings, out, poll);
   report(1.0);

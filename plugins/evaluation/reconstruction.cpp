@@ -6,11 +6,15 @@
 #include <medax/services/sampling.hpp>
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
+
 #include <algorithm>
+#include <exception>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <stdexcept>
+#include <utility>
 
 namespace medax::evaluation {
 
@@ -97,26 +101,34 @@ std::vector<Vec3> shape_samples(const Shape& shape, const ReconstructionOptions&
   return surface;
 }
 
-std::vector<double> distances_to_shape(const Shape& shape, const std::vector<Vec3>& points,
-                                       const services::CancelCheck& cancel) {
+ShapeDistance::ShapeDistance(const Shape& shape) {
+  if (!shape.mesh.empty()) mesh_ = std::make_unique<services::SurfaceDistance>(shape.mesh);
+  else samples_ = std::make_unique<services::PointIndex>(shape.samples.points);
+}
+
+ShapeDistance::~ShapeDistance() = default;
+
+std::vector<double> ShapeDistance::distances(const std::vector<Vec3>& points,
+                                             const services::CancelCheck& cancel) const {
   constexpr std::size_t kBlock = 8192;  // about 10 ms of queries
-  std::optional<services::SurfaceDistance> mesh_distance;
-  std::optional<services::PointIndex> sample_index;
-  if (!shape.mesh.empty()) mesh_distance.emplace(shape.mesh);
-  else sample_index.emplace(shape.samples.points);
   std::vector<double> out(points.size());
   for (std::size_t begin = 0; begin < points.size(); begin += kBlock) {
     if (cancel) cancel();
     const std::vector<Vec3> block(points.begin() + begin, points.begin() + std::min(points.size(), begin + kBlock));
     std::vector<double> d;
-    if (mesh_distance) {
-      d = mesh_distance->distances(block);
+    if (mesh_) {
+      d = mesh_->distances(block);
     } else {
-      for (const Vec3& p : block) d.push_back(sample_index->nearest(p).second);
+      for (const Vec3& p : block) d.push_back(samples_->nearest(p).second);
     }
     std::copy(d.begin(), d.end(), out.begin() + begin);
   }
   return out;
+}
+
+std::vector<double> distances_to_shape(const Shape& shape, const std::vector<Vec3>& points,
+                                       const services::CancelCheck& cancel) {
+  return ShapeDistance(shape).distances(points, cancel);
 }
 
 namespace {
@@ -158,10 +170,10 @@ void measure_surface_to_envelope(const services::Envelope& envelope, const std::
 
 /// Envelope -> surface: distances from the points of ∂E to the mesh (or the nearest sample),
 /// the mean weighted by area.
-void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& result,
+void measure_envelope_to_surface(const ShapeDistance& to_shape, ReconstructionResult& result,
                                  const services::CancelCheck& cancel) {
   if (result.envelope.size() == 0) return;
-  result.envelope_distances = distances_to_shape(shape, result.envelope.points, cancel);
+  result.envelope_distances = to_shape.distances(result.envelope.points, cancel);
   double weighted = 0, area = 0, mx = 0;
   for (std::size_t i = 0; i < result.envelope.size(); ++i) {
     weighted += result.envelope.areas[i] * result.envelope_distances[i];
@@ -171,6 +183,30 @@ void measure_envelope_to_surface(const Shape& shape, ReconstructionResult& resul
   result.envelope_to_surface_max = mx;
   result.envelope_to_surface_mean = area > 0 ? weighted / area : 0.0;
 }
+
+/// Runs a job on the task scheduler beside the caller's work; wait() rethrows what it threw. The
+/// destructor waits too (so that an exception of the caller's work leaves nothing running).
+class BackgroundTask {
+ public:
+  explicit BackgroundTask(std::function<void()> job) {
+    group_.run([this, job = std::move(job)] {
+      try {
+        job();
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+  ~BackgroundTask() { group_.wait(); }
+  void wait() {
+    group_.wait();
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+  }
+
+ private:
+  tbb::task_group group_;
+  std::exception_ptr error_;
+};
 
 }  // namespace
 
@@ -191,6 +227,10 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
     throw std::invalid_argument("no surface samples (vertices: false and surface_samples: 0)");
   result.surface_samples = surface.size();
 
+  // The shape's distance tree does not depend on the envelope: it is built beside the sampling.
+  std::unique_ptr<ShapeDistance> to_shape;
+  BackgroundTask build_to_shape([&] { to_shape = std::make_unique<ShapeDistance>(shape); });
+
   report(0.0, "envelope");
   const services::Envelope envelope(medial);
   result.primitives = envelope.primitives().size();
@@ -200,10 +240,12 @@ ReconstructionResult measure_reconstruction(const Shape& shape, const MedialComp
       envelope.sample_boundary(result.step, [&](double f) { report(0.05 + 0.6 * f, "envelope boundary"); }, cancel);
   result.envelope_area = result.envelope.total_area();
 
-  report(0.65, "surface to envelope");
-  measure_surface_to_envelope(envelope, surface, result, cancel);
-  report(0.75, "envelope to surface");
-  measure_envelope_to_surface(shape, result, cancel);
+  // The two directions at once: each has sequential parts (its search structure) that the
+  // other fills.
+  report(0.65, "distances");
+  build_to_shape.wait();
+  tbb::parallel_invoke([&] { measure_surface_to_envelope(envelope, surface, result, cancel); },
+                       [&] { measure_envelope_to_surface(*to_shape, result, cancel); });
   report(1.0, "done");
   return result;
 }

@@ -7,8 +7,14 @@
 
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <random>
 #include <string_view>
+
+namespace medax::services {
+class SurfaceDistance;
+class PointIndex;
+}  // namespace medax::services
 
 namespace medax::evaluation {
 
@@ -53,8 +59,21 @@ double shape_diagonal(const Shape& shape);
 /// and `uniform_samples` area-uniform points; without a mesh, the shape's samples.
 std::vector<Vec3> shape_samples(const Shape& shape, const ReconstructionOptions& options, std::mt19937_64& rng);
 
-/// Unsigned distance from each point to the shape: to its mesh (CGAL AABB tree), or without a
-/// mesh to the nearest sample. In blocks, with `cancel` polled between them.
+/// Unsigned distances to a shape: to its mesh (CGAL AABB tree), or without a mesh to the nearest
+/// sample. Built once (the tree is the costly part), so that it can be built beside other work.
+class ShapeDistance {
+ public:
+  explicit ShapeDistance(const Shape& shape);
+  ~ShapeDistance();
+  /// The distance of each point, in blocks, with `cancel` polled between them.
+  std::vector<double> distances(const std::vector<Vec3>& points, const services::CancelCheck& cancel = {}) const;
+
+ private:
+  std::unique_ptr<services::SurfaceDistance> mesh_;
+  std::unique_ptr<services::PointIndex> samples_;
+};
+
+/// ShapeDistance(shape).distances(points, cancel).
 std::vector<double> distances_to_shape(const Shape& shape, const std::vector<Vec3>& points,
                                        const services::CancelCheck& cancel = {});
 

@@ -1,12 +1,16 @@
 // The sphere/cone/slab envelope service: closed-form distances against brute-force
-// minimisation, the hierarchy against a linear scan, and boundary points against shapes whose
-// envelope is known exactly.
+// minimisation, the hierarchy against a linear scan (and its paired child bounds against the
+// nodes' own), boundary points against shapes whose envelope is known exactly, and the same
+// results on one and two threads.
 #include <medax/services/envelope.hpp>
 #include <medax/services/kdtree.hpp>
 #include <medax/testing/shapes.hpp>
 
+#include "envelope_bvh.hpp"  // the service's internal hierarchy (framework/services)
+
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <random>
@@ -320,4 +324,71 @@ TEST_CASE("envelope: error of the envelope-to-surface measurement on a known ans
   CHECK(mx <= 0.7 + 1e-9);
   CHECK(mx >= 0.7 - 0.1 * step);
   CHECK(weighted / area == Approx(exact_mean).epsilon(0.002));
+}
+
+TEST_CASE("envelope: a hierarchy node's paired child bounds are the children's own, bit for bit", "[envelope]") {
+  // The search reads both children's lower bounds from their parent's pair (two-lane arithmetic);
+  // they must be the very doubles BvhNode::lower_bound gives, or the search order could change.
+  using services::envelope_detail::BvhNode;
+  using services::envelope_detail::ChildPair;
+  std::mt19937_64 rng(17);
+  const auto random_node = [&](std::uint32_t count) {
+    BvhNode node;
+    for (int k = 0; k < 3; ++k) {
+      const double a = uniform(rng, -1, 1), b = uniform(rng, -1, 1);
+      node.lo[k] = static_cast<float>(std::min(a, b));
+      node.hi[k] = static_cast<float>(std::max(a, b));
+      node.g[k] = static_cast<float>(uniform(rng, -0.5, 0.5));
+    }
+    node.rmax = static_cast<float>(uniform(rng, 0, 0.5));
+    node.slope = static_cast<float>(uniform(rng, 0, 0.95));
+    node.gamma = static_cast<float>(uniform(rng, -1, 1));
+    node.first = static_cast<std::uint32_t>(rng() % 1000);
+    node.count = count;
+    return node;
+  };
+  for (int trial = 0; trial < 2000; ++trial) {
+    const BvhNode left = random_node(trial % 3 == 0 ? 2 : 0), right = random_node(trial % 2 == 0 ? 1 : 0);
+    ChildPair pair;
+    pair.set(0, left, 7);
+    pair.set(1, right, 9);
+    // A leaf child leads to its primitives, an inner one to its own pair.
+    CHECK(pair.index[0] == (left.count > 0 ? left.first : 7));
+    CHECK(pair.index[1] == (right.count > 0 ? right.first : 9));
+    CHECK(pair.count[0] == left.count);
+    CHECK(pair.count[1] == right.count);
+    for (int i = 0; i < 10; ++i) {
+      // Points inside the boxes too (there the bounds are −r_max or the affine bound at the point).
+      const Vec3 x = random_point(rng, -1.5, 1.5);
+      double lb[2];
+      pair.lower_bounds(x, lb);
+      REQUIRE(lb[0] == left.lower_bound(x));
+      REQUIRE(lb[1] == right.lower_bound(x));
+    }
+  }
+}
+
+TEST_CASE("envelope: boundary points and distances are the same on one and two threads", "[envelope][sampling]") {
+  // The sampling runs its searches, the corner lookups, the crossing edges and the refinement in
+  // parallel; results must not depend on the threads.
+  std::mt19937_64 rng(23);
+  const MedialComplex mc = random_complex(rng, 300, 300, 60);
+  const Envelope envelope(mc);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 400; ++i) points.push_back(random_point(rng, -1.2, 1.2));
+  const auto run = [&](int threads) {
+    std::pair<services::EnvelopeSamples, std::vector<double>> out;
+    tbb::task_arena(threads).execute([&] {
+      out.first = envelope.sample_boundary(0.03);
+      out.second = envelope.boundary_distances(points, out.first, nullptr, {}, 0.015);
+    });
+    return out;
+  };
+  const auto one = run(1), two = run(2);
+  REQUIRE(one.first.size() > 1000);
+  CHECK(one.first.points == two.first.points);
+  CHECK(one.first.normals == two.first.normals);
+  CHECK(one.first.areas == two.first.areas);
+  CHECK(one.first.primitives == two.first.primitives);
+  CHECK(one.second == two.second);
 }

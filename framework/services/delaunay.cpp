@@ -306,14 +306,20 @@ std::pair<std::vector<std::size_t>, std::vector<std::size_t>> brio_order(const s
   while (bounds.back() > 1000) bounds.push_back(bounds.back() / 8);
   bounds.push_back(0);
   std::reverse(bounds.begin(), bounds.end());
-  using Traits = CGAL::Spatial_sort_traits_adapter_3<K, CGAL::Pointer_property_map<K::Point_3>::const_type>;
-  const Traits traits(CGAL::make_property_map(points));
+  // The sort moves (point, index) pairs, so that its comparisons read the points in place (the
+  // same comparisons and moves as sorting indices, so the same order).
+  using Located = std::pair<K::Point_3, std::size_t>;
+  std::vector<Located> located(order.size());
+  for_each_index(order.size(), parallel, [&](std::size_t k) { located[k] = {points[order[k]], order[k]}; });
+  using Traits = CGAL::Spatial_sort_traits_adapter_3<K, CGAL::First_of_pair_property_map<Located>>;
+  const Traits traits;
   for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
     if (parallel)
-      CGAL::hilbert_sort<CGAL::Parallel_tag>(order.begin() + bounds[r], order.begin() + bounds[r + 1], traits);
+      CGAL::hilbert_sort<CGAL::Parallel_tag>(located.begin() + bounds[r], located.begin() + bounds[r + 1], traits);
     else
-      CGAL::hilbert_sort(order.begin() + bounds[r], order.begin() + bounds[r + 1], traits);
+      CGAL::hilbert_sort(located.begin() + bounds[r], located.begin() + bounds[r + 1], traits);
   }
+  for_each_index(order.size(), parallel, [&](std::size_t k) { order[k] = located[k].second; });
   return {std::move(order), std::move(bounds)};
 }
 

@@ -166,14 +166,15 @@ std::vector<std::uint64_t> sorted_unique(const std::vector<std::uint64_t>& keys,
 /// instead of 64 per band cell to sort.
 std::vector<std::uint64_t> corner_keys(const std::vector<Cell>& cells, const CancelPoll& poll) {
   constexpr std::uint32_t side = (std::uint32_t{1} << (kLastLevel - 1)) + 1;  // grid points per side
-  std::vector<std::uint64_t> corners;
-  corners.reserve(side * side * side * cells.size());
-  for (std::size_t c = 0; c < cells.size(); ++c) {
+  constexpr std::size_t per_cell = side * side * side;
+  std::vector<std::uint64_t> corners(per_cell * cells.size());
+  tbb::parallel_for(std::size_t{0}, cells.size(), [&](std::size_t c) {
     poll.at(c);
+    std::uint64_t* out = corners.data() + per_cell * c;
     for (std::uint32_t a = 0; a < side; ++a)
       for (std::uint32_t b = 0; b < side; ++b)
-        for (std::uint32_t d = 0; d < side; ++d) corners.push_back(pack(cells[c].i + a, cells[c].j + b, cells[c].k + d));
-  }
+        for (std::uint32_t d = 0; d < side; ++d) *out++ = pack(cells[c].i + a, cells[c].j + b, cells[c].k + d);
+  });
   return sorted_unique(corners, poll);
 }
 

@@ -23,6 +23,29 @@ struct Box {
   }
 };
 
+/// The frame of the input: origin at the box centre, scale its largest side.
+void set_frame(VmasInput& in, const Box& box, const char* degenerate) {
+  in.origin = 0.5 * (box.lo + box.hi);
+  in.scale = (box.hi - box.lo).maxCoeff();
+  in.diagonal = (box.hi - box.lo).norm();
+  if (!(in.scale > 0)) throw std::invalid_argument(degenerate);
+}
+
+/// A vertex's sums of weighted tangent planes: the plane quadric of eq. 5/7, and the authors'
+/// rows Σ √w (n·(v − q) − r) as (a, β).
+struct PlaneSums {
+  Quadric q;
+  Vec4 a = Vec4::Zero();
+  double beta = 0;
+  void add(const Vec3& p, const Vec3& n, double w) {
+    q += Quadric::plane(p, n, w);
+    a += std::sqrt(w) * Vec4(n.x(), n.y(), n.z(), 1.0);
+    beta += std::sqrt(w) * n.dot(p);
+  }
+  PackedQuadric quadric() const { return PackedQuadric::from(q); }
+  PackedQuadric author_quadric() const { return PackedQuadric::from(Quadric::row(a, beta)); }
+};
+
 /// The k nearest other points of every point (closest first), in parallel.
 std::vector<std::vector<Index>> knn_lists(const services::PointIndex& kd, const std::vector<Vec3>& points,
                                           std::size_t k) {
@@ -80,10 +103,7 @@ std::shared_ptr<const VmasInput> VmasInput::from_mesh(const SurfaceMesh& mesh, c
       if (v >= mesh.vertices.size()) throw std::invalid_argument("a face refers to a missing vertex");
       box.add(mesh.vertices[v]);
     }
-  in->origin = 0.5 * (box.lo + box.hi);
-  in->scale = (box.hi - box.lo).maxCoeff();
-  in->diagonal = (box.hi - box.lo).norm();
-  if (!(in->scale > 0)) throw std::invalid_argument("the mesh is degenerate (zero extent)");
+  set_frame(*in, box, "the mesh is degenerate (zero extent)");
 
   const std::size_t n = mesh.vertices.size();
   SurfaceMesh local;
@@ -95,23 +115,17 @@ std::shared_ptr<const VmasInput> VmasInput::from_mesh(const SurfaceMesh& mesh, c
   in->face_normals_ = services::face_normals(local);
   const std::vector<double> face_area = services::face_areas(local);
 
-  std::vector<Quadric> q(n);
-  std::vector<Vec4> row_a(n, Vec4::Zero());
-  std::vector<double> row_beta(n, 0.0);
+  std::vector<PlaneSums> planes(n);
   std::vector<Vec3> normal_sum(n, Vec3::Zero());
   in->areas.assign(n, 0.0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Vec3& nf = in->face_normals_[f];
     const double w = face_area[f] / 3.0;
     if (!(w > 0)) continue;
-    const Vec4 nt(nf.x(), nf.y(), nf.z(), 1.0);
     for (Index v : mesh.faces[f]) {
-      const Vec3& p = in->points[v];
-      q[v] += Quadric::plane(p, nf, w);          // eq. 7: the plane through v with the face normal
-      row_a[v] += std::sqrt(w) * nt;             // authors' code: Σ_t √w_t (n_t·(v − q) − r)
-      row_beta[v] += std::sqrt(w) * nf.dot(p);
-      in->areas[v] += w;                         // eq. 6: A(v) = Σ A(t)/3
-      normal_sum[v] += face_area[f] * nf;        // area-weighted vertex normal
+      planes[v].add(in->points[v], nf, w);  // eq. 7: the plane through v with the face normal
+      in->areas[v] += w;                    // eq. 6: A(v) = Σ A(t)/3
+      normal_sum[v] += face_area[f] * nf;   // area-weighted vertex normal
     }
   }
   in->normals.resize(n);
@@ -120,8 +134,8 @@ std::shared_ptr<const VmasInput> VmasInput::from_mesh(const SurfaceMesh& mesh, c
   for (std::size_t v = 0; v < n; ++v) {
     const double len = normal_sum[v].norm();
     in->normals[v] = len > 0 ? Vec3(normal_sum[v] / len) : Vec3::Zero();
-    in->quadrics[v] = PackedQuadric::from(q[v]);
-    in->author_quadrics[v] = PackedQuadric::from(Quadric::row(row_a[v], row_beta[v]));
+    in->quadrics[v] = planes[v].quadric();
+    in->author_quadrics[v] = planes[v].author_quadric();
   }
   in->graph_edges = mesh_edges(mesh.faces);
   in->aabb_ = std::make_unique<services::SurfaceDistance>(local);
@@ -140,10 +154,7 @@ std::shared_ptr<const VmasInput> VmasInput::from_samples(const OrientedSamples& 
   in->options = options;
   Box box;
   for (const Vec3& p : samples.points) box.add(p);
-  in->origin = 0.5 * (box.lo + box.hi);
-  in->scale = (box.hi - box.lo).maxCoeff();
-  in->diagonal = (box.hi - box.lo).norm();
-  if (!(in->scale > 0)) throw std::invalid_argument("the samples are degenerate (zero extent)");
+  set_frame(*in, box, "the samples are degenerate (zero extent)");
   in->points.resize(n);
   in->normals.resize(n);
   for (std::size_t v = 0; v < n; ++v) {
@@ -165,20 +176,12 @@ std::shared_ptr<const VmasInput> VmasInput::from_samples(const OrientedSamples& 
   in->quadrics.resize(n);
   in->author_quadrics.resize(n);
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t v) {
-    Quadric q;
-    Vec4 a = Vec4::Zero();
-    double beta = 0;
-    const auto add = [&](Index u) {
-      const double w = in->areas[u] / static_cast<double>(k + 1);
-      const Vec3& nu = in->normals[u];
-      q += Quadric::plane(in->points[u], nu, w);
-      a += std::sqrt(w) * Vec4(nu.x(), nu.y(), nu.z(), 1.0);
-      beta += std::sqrt(w) * nu.dot(in->points[u]);
-    };
+    PlaneSums planes;
+    const auto add = [&](Index u) { planes.add(in->points[u], in->normals[u], in->areas[u] / static_cast<double>(k + 1)); };
     add(static_cast<Index>(v));
     for (Index u : knn[v]) add(u);
-    in->quadrics[v] = PackedQuadric::from(q);
-    in->author_quadrics[v] = PackedQuadric::from(Quadric::row(a, beta));
+    in->quadrics[v] = planes.quadric();
+    in->author_quadrics[v] = planes.author_quadric();
   });
   in->graph_edges = edges_of_lists(knn);
   in->finish_setup();

@@ -12,6 +12,7 @@ struct PresolveStats {
   std::size_t dominated_columns = 0;  ///< duplicate, empty or subset columns removed
   std::size_t dominated_rows = 0;     ///< rows implied by another row, removed
   std::size_t rounds = 0;
+  std::size_t rows = 0, columns = 0, nonzeros = 0;  ///< the program left to solve (set by solve_exact)
 };
 
 struct Presolved {

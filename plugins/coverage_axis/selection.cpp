@@ -24,11 +24,15 @@ void write_selection_json(std::ostream& out, const Selection& s) {
   j["lower_bound"] = s.lower_bound;
   j["proven_optimal"] = s.proven_optimal;
   j["gap"] = s.gap;
+  j["greedy"] = s.greedy;
   j["warm_start"] = s.warm_start;
+  j["nodes"] = s.nodes;
   j["presolve"] = {{"forced", s.forced}, {"dominated_columns", s.dominated_columns},
-                   {"dominated_rows", s.dominated_rows}};
+                   {"dominated_rows", s.dominated_rows}, {"rows", s.rows}, {"columns", s.columns},
+                   {"nonzeros", s.nonzeros}};
   j["seconds"] = {{"candidates", s.seconds_candidates}, {"matrix", s.seconds_matrix},
-                  {"presolve", s.seconds_presolve}, {"lp", s.seconds_lp}, {"solve", s.seconds_solve}};
+                  {"presolve", s.seconds_presolve}, {"lp", s.seconds_lp}, {"search", s.seconds_search},
+                  {"solve", s.seconds_solve}};
   j["marked"] = s.marked;
   j["spheres"] = std::move(spheres);
   out << j.dump(1) << '\n';

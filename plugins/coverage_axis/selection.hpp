@@ -28,9 +28,13 @@ struct Selection {
   double lower_bound = 0;            ///< exact mode: best proven lower bound
   bool proven_optimal = false;       ///< exact mode: CBC proof or LP certificate
   double gap = 0;                    ///< exact mode: (size − ⌈lower bound⌉) / size
-  std::size_t warm_start = 0;        ///< exact mode: greedy cover size
+  std::size_t greedy = 0;            ///< exact mode: textbook greedy cover size
+  std::size_t warm_start = 0;        ///< exact mode: the greedy cover after local search, given to CBC
+  std::size_t nodes = 0;             ///< exact mode: branch-and-cut nodes
   std::size_t forced = 0, dominated_columns = 0, dominated_rows = 0;  ///< presolve
-  double seconds_candidates = 0, seconds_matrix = 0, seconds_presolve = 0, seconds_lp = 0, seconds_solve = 0;
+  std::size_t rows = 0, columns = 0, nonzeros = 0;  ///< exact mode: the program after presolve
+  double seconds_candidates = 0, seconds_matrix = 0, seconds_presolve = 0, seconds_lp = 0, seconds_search = 0,
+         seconds_solve = 0;
   std::size_t marked = 0;            ///< complex vertices marked `selected`
 };
 

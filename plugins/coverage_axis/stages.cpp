@@ -52,10 +52,10 @@ std::string summary(const Selection& s) {
   const std::string certificate =
       s.proven_optimal ? fmt::format("proven optimal (LP bound {:.2f})", s.lp_bound)
                        : fmt::format("NOT proven optimal: lower bound {:.2f}, gap {:.1f}%", s.lower_bound, 100 * s.gap);
-  return fmt::format("{} spheres selected, {}; times: candidates {:.2f} s, matrix {:.2f} s, presolve {:.2f} s, "
-                     "LP {:.2f} s, branch and cut {:.2f} s",
-                     s.objective, certificate, s.seconds_candidates, s.seconds_matrix, s.seconds_presolve,
-                     s.seconds_lp, s.seconds_solve);
+  return fmt::format("{} spheres selected, {}; warm start {} (greedy {}), {} nodes; times: candidates {:.2f} s, "
+                     "matrix {:.2f} s, presolve {:.2f} s, LP {:.2f} s, local search {:.2f} s, branch and cut {:.2f} s",
+                     s.objective, certificate, s.warm_start, s.greedy, s.nodes, s.seconds_candidates, s.seconds_matrix,
+                     s.seconds_presolve, s.seconds_lp, s.seconds_search, s.seconds_solve);
 }
 
 }  // namespace
@@ -143,12 +143,18 @@ void CoverageAxisStage::select_exact(const std::vector<Vec3>& samples, const Bal
   out.lower_bound = r.lower_bound;
   out.proven_optimal = r.proven_optimal;
   out.gap = r.gap;
+  out.greedy = r.greedy;
   out.warm_start = r.warm_start;
+  out.nodes = r.nodes;
   out.forced = r.presolve.forced;
   out.dominated_columns = r.presolve.dominated_columns;
   out.dominated_rows = r.presolve.dominated_rows;
+  out.rows = r.presolve.rows;
+  out.columns = r.presolve.columns;
+  out.nonzeros = r.presolve.nonzeros;
   out.seconds_presolve += r.seconds_presolve;
   out.seconds_lp = r.seconds_lp;
+  out.seconds_search = r.seconds_search;
   out.seconds_solve = r.seconds_solve;
 }
 

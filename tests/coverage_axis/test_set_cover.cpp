@@ -1,8 +1,10 @@
 // The set-cover solvers on abstract instances: the exact solve against brute force, with and
-// without presolve; the greedy covers against it; the proven-optimal flag against known optima.
+// without presolve; the greedy covers and the local search against it; the proven-optimal flag
+// against known optima.
 #include "presolve.hpp"
 #include "set_cover_exact.hpp"
 #include "set_cover_greedy.hpp"
+#include "set_cover_local_search.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -57,6 +59,21 @@ SetCover complete_graph_vertex_cover(Index n) {
       c.columns[b].push_back(static_cast<Index>(c.rows));
       ++c.rows;
     }
+  return c;
+}
+
+/// The classic trap for the greedy: two halves of 2^k − 1 rows each, split into blocks of 1, 2,
+/// 4, … rows; one column per half (the optimum, 2), and one column per block size covering that
+/// block in both halves, which the greedy takes first, largest first (k columns).
+SetCover greedy_trap(Index k) {
+  const Index half = (1u << k) - 1;
+  SetCover c;
+  c.rows = 2 * half;
+  c.columns.resize(2 + k);
+  for (Index r = 0; r < half; ++r) c.columns[0].push_back(r), c.columns[1].push_back(half + r);
+  for (Index b = 0, first = 0; b < k; first += 1u << b, ++b)
+    for (Index r = first; r < first + (1u << b); ++r) c.columns[2 + b].push_back(r), c.columns[2 + b].push_back(half + r);
+  for (auto& column : c.columns) std::sort(column.begin(), column.end());
   return c;
 }
 
@@ -157,5 +174,51 @@ TEST_CASE("CA++: with λ_u = λ_c = 0 it is the textbook greedy; it never beats 
     GreedyOptions capped;
     capped.target = 3;
     CHECK(ca_plus_plus(c, balls, capped).size() == 3);
+  }
+}
+
+TEST_CASE("local search: a cover between the optimum and the greedy, reproducible", "[coverage_axis][local_search]") {
+  std::mt19937_64 rng(5);
+  for (int instance = 0; instance < 40; ++instance) {
+    const SetCover c = random_instance(12 + instance % 9, 6 + instance % 9, 0.25, rng);
+    const std::vector<Index> greedy = textbook_greedy(c);
+    LocalSearchOptions options;
+    options.iterations = 2000;
+    const std::vector<Index> found = local_search_cover(c, greedy, options);
+    INFO("instance " << instance);
+    CHECK(covers_all(c, found));
+    CHECK(std::is_sorted(found.begin(), found.end()));
+    CHECK(found.size() >= brute_force_minimum(c));
+    CHECK(found.size() <= greedy.size());
+    CHECK(local_search_cover(c, greedy, options) == found);
+  }
+  SECTION("it leaves the greedy's trap: k block columns become the two half columns") {
+    const SetCover c = greedy_trap(5);
+    const std::vector<Index> greedy = textbook_greedy(c);
+    CHECK(greedy.size() == 5);
+    CHECK(local_search_cover(c, greedy, LocalSearchOptions{}) == std::vector<Index>{0, 1});
+  }
+  SECTION("no steps: the start without redundant columns (each covers a row no other one does)") {
+    const SetCover c = greedy_trap(3);
+    LocalSearchOptions none;
+    none.iterations = 0;
+    const std::vector<Index> kept = local_search_cover(c, {0, 1, 2, 3, 4}, none);
+    CHECK(covers_all(c, kept));
+    CHECK(kept.size() < 5);
+    for (Index j : kept) {
+      std::vector<Index> without;
+      std::copy_if(kept.begin(), kept.end(), std::back_inserter(without), [&](Index k) { return k != j; });
+      CHECK_FALSE(covers_all(c, without));
+    }
+  }
+  SECTION("the exact solve reports greedy, warm start and solution sizes in that order") {
+    const SetCover c = greedy_trap(4);
+    ExactOptions plain;  // the presolve would merge each block's rows and leave the greedy no trap
+    plain.presolve = false;
+    const ExactResult r = solve_exact(c, plain);
+    CHECK(r.greedy == 4);
+    CHECK(r.warm_start == 2);
+    CHECK(r.chosen == std::vector<Index>{0, 1});
+    CHECK(r.proven_optimal);
   }
 }

@@ -40,7 +40,7 @@ class Simplifier {
     slab_ = std::move(q.slab);
     add_ = std::move(q.add);
     has_add_.resize(add_.size());
-    for (std::size_t v = 0; v < add_.size(); ++v) has_add_[v] = !(add_[v].A.array() == 0).all();
+    for (std::size_t v = 0; v < add_.size(); ++v) has_add_[v] = !add_[v].is_zero();
     invalid_faces_ = q.invalid_faces;
     // Parity with the authors' connection program: the queue is costed before the marking.
     if (options_.stale_saved_costs) queue_all_edges();
@@ -69,7 +69,7 @@ class Simplifier {
   double unit_;
   CollapseMesh mesh_;
   std::vector<SlabQuadric> slab_, add_;
-  std::vector<char> has_add_;  // add_[v].A has a nonzero entry
+  std::vector<char> has_add_;  // add_[v] has a nonzero entry
   std::vector<char> saved_;
   std::vector<std::uint32_t> stamps_;
   std::vector<std::vector<Index>> generators_;
@@ -98,15 +98,17 @@ Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, FlipTest* flip
 }
 
 /// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean. The
-/// face count matters only when Q_e is singular; without add terms Q_e + add is Q_e plus zeros,
-/// whose determinant has the same magnitude, so it is not computed twice.
+/// face count matters only when Q_e is singular. Without add terms Q_e + add is Q_e bit for bit
+/// (quadrics are sums started from +0, so no entry is −0, and x + (+0) = x), so neither the sum
+/// nor the determinant is computed twice.
 Vec4 Simplifier::optimal_sphere(Index i, Index j, FlipTest& flips, double& error) const {
   const SlabQuadric qe = slab_[i] + slab_[j];
   const bool invertible = qe.invertible(kSingular);
   FlipTest* avoid = options_.flip_test ? &flips : nullptr;
   if (!invertible && mesh_.face_count(i, j) != 0) return cheapest(i, j, qe, avoid, error);
-  const SlabQuadric qa = qe + add_[i] + add_[j];
-  const bool qa_invertible = has_add_[i] || has_add_[j] ? qa.invertible(kSingular) : invertible;
+  const bool with_add = has_add_[i] || has_add_[j];
+  const SlabQuadric qa = with_add ? qe + add_[i] + add_[j] : qe;
+  const bool qa_invertible = with_add ? qa.invertible(kSingular) : invertible;
   const std::optional<Vec4> m = qa_invertible ? qa.solution() : std::nullopt;
   const Vec4 sphere = m && m->w() > 0 ? *m : Vec4(0.5 * (mesh_.spheres[i] + mesh_.spheres[j]));
   if (avoid && flips.flips(i, j, centre_of(sphere))) return cheapest(i, j, qa, avoid, error);

@@ -1,5 +1,7 @@
 #include "collapse_mesh.hpp"
 
+#include <medax/services/blocks.hpp>
+
 #include <algorithm>
 #include <iterator>
 
@@ -19,13 +21,16 @@ void erase_sorted(std::vector<Index>& list, Index v) {
   if (it != list.end() && *it == v) list.erase(it);
 }
 
-/// Adds room in lists[v] for `per_corner` (or, when 0, one) entries per element holding v.
+/// Adds `per_corner` to count[v] for each element holding v.
 template <typename Element>
-void reserve_per_vertex(std::vector<std::vector<Index>>& lists, const std::vector<Element>& elements, int per_corner) {
-  std::vector<std::size_t> count(lists.size(), 0);
+void count_per_vertex(std::vector<std::size_t>& count, const std::vector<Element>& elements, std::size_t per_corner) {
   for (const Element& e : elements)
-    for (Index v : e) count[v] += per_corner > 0 ? per_corner : 1;
-  for (std::size_t v = 0; v < lists.size(); ++v) lists[v].reserve(lists[v].capacity() + count[v]);
+    for (Index v : e) count[v] += per_corner;
+}
+
+/// Room for count[v] entries in lists[v] (one allocation per list).
+void reserve(std::vector<std::vector<Index>>& lists, const std::vector<std::size_t>& count) {
+  for (std::size_t v = 0; v < lists.size(); ++v) lists[v].reserve(count[v]);
 }
 
 }  // namespace
@@ -42,7 +47,9 @@ CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
 
 /// One slot per input face, in input order, except degenerate faces and repeats of an earlier one.
 void CollapseMesh::add_faces(const MedialComplex& medial) {
-  reserve_per_vertex(vertex_faces_, medial.faces, 0);
+  std::vector<std::size_t> count(vertex_faces_.size(), 0);
+  count_per_vertex(count, medial.faces, 1);
+  reserve(vertex_faces_, count);
   for (Index input = 0; input < medial.faces.size(); ++input) {
     const Tri& t = medial.faces[input];
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || has_face(t[0], t[1], t[2])) continue;
@@ -54,10 +61,13 @@ void CollapseMesh::add_faces(const MedialComplex& medial) {
   }
 }
 
-/// Neighbours: the complex's edges and every side of a face slot, sorted and without repeats.
+/// Neighbours: the complex's edges and every side of a face slot, sorted and without repeats
+/// (each vertex's list on its own, in parallel).
 void CollapseMesh::add_adjacency(const MedialComplex& medial) {
-  reserve_per_vertex(neighbours_, medial.edges, 0);
-  reserve_per_vertex(neighbours_, faces_, 2);  // two face sides meet at each corner
+  std::vector<std::size_t> count(neighbours_.size(), 0);
+  count_per_vertex(count, medial.edges, 1);
+  count_per_vertex(count, faces_, 2);  // two face sides meet at each corner
+  reserve(neighbours_, count);
   auto add = [&](Index a, Index b) {
     if (a == b) return;
     neighbours_[a].push_back(b);
@@ -66,10 +76,13 @@ void CollapseMesh::add_adjacency(const MedialComplex& medial) {
   for (const Segment& e : medial.edges) add(e[0], e[1]);
   for (const Tri& t : faces_)
     for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3]);
-  for (std::vector<Index>& list : neighbours_) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  services::for_blocks(neighbours_.size(), 4096, true, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      std::vector<Index>& list = neighbours_[v];
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+  });
 }
 
 bool CollapseMesh::has_faces(Index v) const {

@@ -1,5 +1,6 @@
 #include "flip_test.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace medax::qmat {
@@ -9,14 +10,10 @@ constexpr double kSliver = 1e-6;  // sine of a face's angle below which it has n
 }
 
 FlipTest::Fan& FlipTest::fan_of(Index v) {
-  for (int s = 0; s < 2; ++s)
-    if (slots_[s].vertex == v) {
-      next_slot_ = 1 - s;
-      return slots_[s];
-    }
-  Fan& fan = slots_[next_slot_];
-  next_slot_ = 1 - next_slot_;
+  Fan& fan = slots_[v % kSlots];
+  if (fan.vertex == v && fan.epoch == epoch_) return fan;
   fan.vertex = v;
+  fan.epoch = epoch_;
   fan.next_face = 0;
   fan.count = 0;
   return fan;
@@ -43,7 +40,7 @@ bool FlipTest::any_flip(Fan& fan, Index other, const Vec3& centre) const {
 bool FlipTest::gather_until_flip(Fan& fan, Index other, const Vec3& centre) const {
   const Index v = fan.vertex;
   const std::vector<Index>& faces = mesh_.face_list(v);
-  if (fan.corners.size() < faces.size()) fan.corners.resize(faces.size());
+  if (fan.corners.size() < faces.size()) fan.corners.resize(std::max<std::size_t>(faces.size(), 16));
   const Vec3 p = centre_of(mesh_.spheres[v]);
   while (fan.next_face < faces.size()) {
     const Index f = faces[fan.next_face++];

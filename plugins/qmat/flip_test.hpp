@@ -4,12 +4,14 @@
 // than 90°? Each evaluation of an edge tests up to four candidate centres, and the edges of a
 // merged vertex are evaluated one after another, so the faces around a vertex are gathered
 // into a "fan" (its two other corners and the face's current normal, slivers left out) that is
-// kept until the mesh changes. A fan is gathered lazily, face by face, only as far as a test
-// needs (most tests stop at the first flipping face), and the face that flipped last is tested
-// first. The answer does not depend on the order; the arithmetic is that of testing face by face.
+// kept until the mesh changes, in a small cache of fans indexed by vertex (the first costing of
+// all edges meets each vertex's fan from several edges). A fan is gathered lazily, face by face,
+// only as far as a test needs (most tests stop at the first flipping face), and the face that
+// flipped last is tested first. The answer does not depend on the order; the arithmetic is that
+// of testing face by face.
 #include "collapse_mesh.hpp"
 
-#include <array>
+#include <cstdint>
 #include <vector>
 
 namespace medax::qmat {
@@ -21,7 +23,7 @@ class FlipTest {
   /// Whether moving i and j to `centre` flips a face around them.
   bool flips(Index i, Index j, const Vec3& centre);
   /// Drops the gathered fans; call after every change of the mesh or of a sphere.
-  void forget() { slots_[0].vertex = slots_[1].vertex = kNone; }
+  void forget() { ++epoch_; }
 
  private:
   static constexpr Index kNone = static_cast<Index>(-1);
@@ -31,6 +33,7 @@ class FlipTest {
   };
   struct Fan {
     Index vertex = kNone;
+    std::uint64_t epoch = 0;      ///< the fan is current while this is the test's epoch
     std::size_t next_face = 0;    ///< position in the vertex's face list gathered up to
     std::size_t count = 0;        ///< corners[0, count) are gathered (the storage is reused)
     std::vector<Corner> corners;
@@ -40,9 +43,11 @@ class FlipTest {
   bool any_flip(Fan& fan, Index other, const Vec3& centre) const;
   bool gather_until_flip(Fan& fan, Index other, const Vec3& centre) const;
 
+  static constexpr std::size_t kSlots = 256;  // fans kept, at slot vertex % kSlots
+
   const CollapseMesh& mesh_;
-  std::array<Fan, 2> slots_;
-  int next_slot_ = 0;  // the slot a new fan replaces (the other holds the last one used)
+  std::vector<Fan> slots_ = std::vector<Fan>(kSlots);
+  std::uint64_t epoch_ = 1;
 };
 
 }  // namespace medax::qmat

@@ -15,27 +15,37 @@ SlabQuadric SlabQuadric::tangent_plane(const Vec3& n, const Vec4& at, double wei
   return q;
 }
 
-Vec4 solve_partial_pivot(Mat4 A, Vec4 x) {
-  // Eigen's unblocked partial-pivot LU of a fixed 4×4: pivot = first largest |entry| of the
-  // column, row swap, column divided by the pivot, rank-one update of the trailing block. On a
-  // plain array, which the compiler unrolls.
+namespace {
+
+/// Step K of Eigen's unblocked partial-pivot LU of a fixed 4×4: pivot = first largest |entry| of
+/// column K, row swap, column divided by the pivot, rank-one update of the trailing block. A
+/// template, so that the compiler unrolls every loop.
+template <int K>
+void eliminate(double (&lu)[4][4], int (&pivot)[3]) {
+  int p = K;
+  double biggest = std::abs(lu[K][K]);
+  for (int r = K + 1; r < 4; ++r)
+    if (std::abs(lu[r][K]) > biggest) p = r, biggest = std::abs(lu[r][K]);
+  pivot[K] = p;
+  if (biggest != 0) {
+    if (p != K)
+      for (int c = 0; c < 4; ++c) std::swap(lu[K][c], lu[p][c]);
+    for (int r = K + 1; r < 4; ++r) lu[r][K] /= lu[K][K];
+  }
+  for (int c = K + 1; c < 4; ++c)
+    for (int r = K + 1; r < 4; ++r) lu[r][c] -= lu[K][c] * lu[r][K];
+}
+
+}  // namespace
+
+Vec4 solve_partial_pivot(const Mat4& A, Vec4 x) {
   double lu[4][4];
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) lu[r][c] = A(r, c);
   int pivot[3];
-  for (int k = 0; k < 3; ++k) {
-    int p = k;
-    double biggest = std::abs(lu[k][k]);
-    for (int r = k + 1; r < 4; ++r)
-      if (std::abs(lu[r][k]) > biggest) p = r, biggest = std::abs(lu[r][k]);
-    pivot[k] = p;
-    if (biggest != 0) {
-      if (p != k) std::swap(lu[k], lu[p]);
-      for (int r = k + 1; r < 4; ++r) lu[r][k] /= lu[k][k];
-    }
-    for (int c = k + 1; c < 4; ++c)
-      for (int r = k + 1; r < 4; ++r) lu[r][c] -= lu[k][c] * lu[r][k];
-  }
+  eliminate<0>(lu, pivot);
+  eliminate<1>(lu, pivot);
+  eliminate<2>(lu, pivot);
   for (int k = 0; k < 3; ++k) std::swap(x[k], x[pivot[k]]);
   // Eigen's unrolled triangular solves: unit lower, then upper; the dot products of two or
   // three terms are summed as a₀ + a₁ and a₀ + (a₁ + a₂).

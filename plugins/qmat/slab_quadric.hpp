@@ -40,6 +40,7 @@ struct SlabQuadric {
     return *this;
   }
   friend SlabQuadric operator+(SlabQuadric a, const SlabQuadric& o) { return a += o; }
+  bool is_zero() const { return (A.array() == 0).all() && (b.array() == 0).all() && c == 0; }
   /// Whether |det A| > `singular` (the authors' test, 1e-12, for a usable minimiser).
   bool invertible(double singular) const { return std::abs(A.determinant()) > singular; }
   /// The solution of A m = b when it is finite; call only when A is invertible.
@@ -52,7 +53,7 @@ struct SlabQuadric {
 
 /// x with A x = b by partial-pivot LU, bit for bit what Eigen's A.partialPivLu().solve(b)
 /// gives (Eigen 3.4, no FMA), at a fraction of its cost: the collapse solves one per edge costed.
-Vec4 solve_partial_pivot(Mat4 A, Vec4 b);
+Vec4 solve_partial_pivot(const Mat4& A, Vec4 b);
 
 /// The two tangent planes of the slab of three spheres: unit n with n·(cᵢ − c₀) = r₀ − rᵢ.
 /// Nothing when two centres are closer than `min_distance` (1e-8), the centres are collinear, or

@@ -11,19 +11,35 @@ namespace {
 
 constexpr Index kNoColumn = static_cast<Index>(-1);
 
+/// What every run reads: the columns of each row, and the columns sharing a row with each column.
+struct Adjacency {
+  std::vector<std::vector<Index>> by_row;
+  std::vector<std::vector<Index>> neighbours;  ///< distinct, the column itself included
+
+  explicit Adjacency(const SetCover& cover) : by_row(row_columns(cover)), neighbours(cover.columns.size()) {
+    std::vector<Index> seen(cover.columns.size(), kNoColumn);
+    for (Index j = 0; j < cover.columns.size(); ++j)
+      for (Index r : cover.columns[j])
+        for (Index k : by_row[r])
+          if (seen[k] != j) seen[k] = j, neighbours[j].push_back(k);
+  }
+};
+
 /// RWLS's state: the current (partial) selection S, how often each row is covered, the row
 /// weights and every column's score, i.e. the weight S gains by adding a column outside S
 /// (its uncovered rows) or loses by removing one in S (its rows no other column of S covers).
 class RowWeightingSearch {
  public:
-  RowWeightingSearch(const SetCover& cover, const std::vector<std::vector<Index>>& by_row)
+  RowWeightingSearch(const SetCover& cover, const Adjacency& adjacency)
       : cover_(cover),
-        by_row_(by_row),
+        by_row_(adjacency.by_row),
+        neighbours_(adjacency.neighbours),
         position_(cover.columns.size(), kOut),
         score_(cover.columns.size(), 0),
         stamp_(cover.columns.size(), 0),
         can_add_(cover.columns.size(), 1),
         count_(cover.rows, 0),
+        cover_xor_(cover.rows, 0),
         weight_(cover.rows, 1),
         uncovered_at_(cover.rows, kOut) {
     for (Index r = 0; r < cover.rows; ++r) mark_uncovered(r);
@@ -44,11 +60,12 @@ class RowWeightingSearch {
         mark_covered(r);
         shift_others(r, j, -weight_[r]);  // no longer a gain for the other columns of r
       } else if (count_[r] == 1) {
-        score_[sole_cover(r, j)] += weight_[r];  // its removal no longer uncovers r
+        score_[cover_xor_[r]] += weight_[r];  // its removal no longer uncovers r
       }
       ++count_[r];
-      allow_neighbours(r);
+      cover_xor_[r] ^= j;
     }
+    allow_neighbours(j);
   }
 
   void remove(Index j, std::size_t step) {
@@ -61,14 +78,15 @@ class RowWeightingSearch {
     stamp_[j] = step;
     for (Index r : cover_.columns[j]) {
       --count_[r];
+      cover_xor_[r] ^= j;
       if (count_[r] == 0) {
         mark_uncovered(r);
         shift_others(r, j, weight_[r]);
       } else if (count_[r] == 1) {
-        score_[sole_cover(r, j)] -= weight_[r];
+        score_[cover_xor_[r]] -= weight_[r];
       }
-      allow_neighbours(r);
     }
+    allow_neighbours(j);
     can_add_[j] = 0;  // configuration checking: not back before a neighbour changes
   }
 
@@ -123,34 +141,31 @@ class RowWeightingSearch {
     for (Index k : by_row_[r])
       if (k != except) score_[k] += delta;
   }
-  /// The column of S other than `except` that covers row r (exactly one does).
-  Index sole_cover(Index r, Index except) const {
-    for (Index k : by_row_[r])
-      if (k != except && selected(k)) return k;
-    return except;
-  }
-  void allow_neighbours(Index r) {
-    for (Index k : by_row_[r]) can_add_[k] = 1;
+  /// Configuration checking: a change of j lets its neighbours be added again.
+  void allow_neighbours(Index j) {
+    for (Index k : neighbours_[j]) can_add_[k] = 1;
   }
 
   const SetCover& cover_;
   const std::vector<std::vector<Index>>& by_row_;
+  const std::vector<std::vector<Index>>& neighbours_;
   std::vector<std::size_t> position_;  ///< index in selection_, or kOut
   std::vector<Index> selection_;
   std::vector<std::int64_t> score_;
   std::vector<std::size_t> stamp_;     ///< step of the column's last move
   std::vector<char> can_add_;
   std::vector<std::uint32_t> count_;   ///< columns of S covering each row
+  std::vector<Index> cover_xor_;       ///< XOR of those columns: the sole one when count_ is 1
   std::vector<std::int64_t> weight_;
   std::vector<Index> uncovered_;
   std::vector<std::size_t> uncovered_at_;
 };
 
 /// One run of RWLS from `start` with its own random row choices.
-std::vector<Index> search_once(const SetCover& cover, const std::vector<std::vector<Index>>& by_row,
+std::vector<Index> search_once(const SetCover& cover, const Adjacency& adjacency,
                                const std::vector<Index>& start, std::size_t steps, std::size_t lower_bound,
                                std::uint64_t seed) {
-  RowWeightingSearch search(cover, by_row);
+  RowWeightingSearch search(cover, adjacency);
   for (Index j : start) search.add(j, 0);
   std::vector<Index> best = search.selection();
   // On a cover: keep it if smaller, then drop the cheapest column, to look for one a column smaller.
@@ -181,12 +196,12 @@ std::vector<Index> search_once(const SetCover& cover, const std::vector<std::vec
 
 std::vector<Index> local_search_cover(const SetCover& cover, const std::vector<Index>& start,
                                       const LocalSearchOptions& options) {
-  const auto by_row = row_columns(cover);
+  const Adjacency adjacency(cover);
   // No runs: one without steps, which only removes the start's redundant columns.
   const std::size_t steps = options.runs == 0 ? 0 : options.iterations;
   std::vector<std::vector<Index>> found(std::max<std::size_t>(options.runs, 1));
   services::for_blocks(found.size(), 1, true, [&](std::size_t run, std::size_t, std::size_t) {
-    found[run] = search_once(cover, by_row, start, steps, options.lower_bound, options.seed + run);
+    found[run] = search_once(cover, adjacency, start, steps, options.lower_bound, options.seed + run);
   });
   // The smallest cover, of the lowest run on ties: the same whatever the thread count.
   return *std::min_element(found.begin(), found.end(),

@@ -7,6 +7,7 @@
 #include "set_cover_local_search.hpp"
 
 #include <catch2/catch.hpp>
+#include <tbb/global_control.h>
 
 #include <random>
 
@@ -191,6 +192,17 @@ TEST_CASE("local search: a cover between the optimum and the greedy, reproducibl
     CHECK(found.size() >= brute_force_minimum(c));
     CHECK(found.size() <= greedy.size());
     CHECK(local_search_cover(c, greedy, options) == found);
+  }
+  SECTION("the same cover on 1 and 4 threads (the runs are combined in run order)") {
+    const SetCover c = random_instance(120, 90, 0.06, rng);
+    LocalSearchOptions options;
+    options.iterations = 3000;
+    std::vector<Index> by_threads[2];
+    for (int t = 0; t < 2; ++t) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t == 0 ? 1 : 4);
+      by_threads[t] = local_search_cover(c, textbook_greedy(c), options);
+    }
+    CHECK(by_threads[0] == by_threads[1]);
   }
   SECTION("it leaves the greedy's trap: k block columns become the two half columns") {
     const SetCover c = greedy_trap(5);

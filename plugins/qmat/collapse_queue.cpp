@@ -55,8 +55,9 @@ void CollapseQueue::sift_down(std::size_t at) {
   for (;;) {
     const std::size_t first = kArity * at + 1;
     if (first >= n) break;
+    const std::size_t last = std::min(first + kArity, n);
     std::size_t least = first;
-    for (std::size_t c = first + 1; c < std::min(first + kArity, n); ++c)
+    for (std::size_t c = first + 1; c < last; ++c)
       if (after(heap_[least], heap_[c])) least = c;
     if (!after(moving, heap_[least])) break;
     heap_[at] = heap_[least];

@@ -19,12 +19,6 @@ FlipTest::Fan& FlipTest::fan_of(Index v) {
   return fan;
 }
 
-/// Whether the face of corner c (around the moving end) turns by more than 90° when that end
-/// goes to `centre`; a face holding the edge's other end vanishes and is not tested.
-bool FlipTest::turns(const Corner& c, Index other, const Vec3& centre) {
-  return c.va != other && c.vb != other && c.normal.dot((c.a - centre).cross(c.b - centre)) < 0;
-}
-
 bool FlipTest::any_flip(Fan& fan, Index other, const Vec3& centre) const {
   for (std::size_t k = 0; k < fan.count; ++k)
     if (turns(fan.corners[k], other, centre)) {

@@ -39,7 +39,11 @@ class FlipTest {
     std::vector<Corner> corners;
   };
   Fan& fan_of(Index v);
-  static bool turns(const Corner& c, Index other, const Vec3& centre);
+  /// Whether the face of corner c (around the moving end) turns by more than 90° when that end
+  /// goes to `centre`; a face holding the edge's other end vanishes and is not tested.
+  static bool turns(const Corner& c, Index other, const Vec3& centre) {
+    return c.va != other && c.vb != other && c.normal.dot((c.a - centre).cross(c.b - centre)) < 0;
+  }
   bool any_flip(Fan& fan, Index other, const Vec3& centre) const;
   bool gather_until_flip(Fan& fan, Index other, const Vec3& centre) const;
 

@@ -8,12 +8,10 @@
 #include "poisson_areas.hpp"
 #include "poisson_neighbours.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>

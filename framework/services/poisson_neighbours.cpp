@@ -2,15 +2,12 @@
 
 #include "poisson_grid.hpp"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numeric>
-#include <tuple>
 
 namespace medax::services::poisson_detail {
 

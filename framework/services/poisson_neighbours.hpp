@@ -40,7 +40,6 @@ struct NeighbourGraph {
   std::vector<std::size_t> offset;
   std::vector<Index> index;
   std::vector<double> value;
-  std::size_t size() const { return original.size(); }
 };
 
 /// For every point, the other points closer than `radius` whose normals agree by `rule`, each

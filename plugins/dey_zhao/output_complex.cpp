@@ -1,0 +1,332 @@
+// MEDIAL's output: the kept Voronoi facets with shared vertices (close circumcentres merged),
+// fan-triangulated, their closure's edges, and the labels and fields of every element.
+#include "medial_passes.hpp"
+
+#include <medax/services/blocks.hpp>
+#include <medax/union_find.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace medax::dey_zhao {
+
+using services::DelaunayTetrahedralization;
+
+namespace {
+
+/// Diagonal of the bounding box of the points in the tetrahedralization.
+double bbox_diagonal(const std::vector<Vec3>& P, const DelaunayTetrahedralization& dt) {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  if (!P.empty())
+    for (int a = 0; a < 3; ++a) lo[a] = hi[a] = P[dt.vertex_point[0]][a];
+  for (Index x : dt.vertex_point)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], P[x][a]), hi[a] = std::max(hi[a], P[x][a]);
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/// Facet vertices closer than the tolerance are merged (cospherical points: many cells, one
+/// circumcentre); each class is represented by its lowest cell. Empty when nothing merges.
+std::optional<UnionFind> merge_close_cells(const Selection& selection, const std::vector<char>& keep,
+                                           const DelaunayTetrahedralization& dt, double tolerance) {
+  const auto& cc = dt.circumcentres;
+  std::optional<UnionFind> classes;
+  for (std::size_t i = 0; i < selection.selected.size(); ++i) {
+    if (!keep[i]) continue;
+    const Selected& s = selection.selected[i];
+    const Index* r = selection.rings.data() + s.ring_begin;
+    for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+      if (s.open && k + 1 == s.ring_size) break;  // no Voronoi edge between the chain's two ends
+      const Index a = r[k], b = r[(k + 1) % s.ring_size];
+      if (a != b && (cc[a] - cc[b]).norm() <= tolerance) {
+        if (!classes) classes.emplace(dt.cells.size());
+        classes->unite(a, b);
+      }
+    }
+  }
+  return classes;
+}
+
+/// The output vertices of the cells.
+struct CellVertices {
+  std::vector<Index> of_cell;  ///< per cell: its vertex (a merged cell: its class's), kNone if unused
+  std::vector<Index> cell;     ///< per vertex: its cell
+};
+
+/// Vertex numbering: the cells around kept facets in cell order, each merge class numbered once
+/// (by its lowest cell, one of the used cells, which stands for the others).
+CellVertices number_cells(const Selection& selection, const std::vector<char>& keep, std::size_t n,
+                          std::optional<UnionFind>& classes, MedialReport& info) {
+  CellVertices out;
+  out.of_cell.assign(n, kNone);
+  for (std::size_t i = 0; i < selection.selected.size(); ++i) {
+    if (!keep[i]) continue;
+    const Selected& s = selection.selected[i];
+    for (std::uint32_t k = 0; k < s.ring_size; ++k) out.of_cell[selection.rings[s.ring_begin + k]] = 0;
+  }
+  std::vector<Index> merged;
+  if (classes)
+    for (std::size_t c = 0; c < n; ++c)
+      if (out.of_cell[c] != kNone && classes->find(static_cast<Index>(c)) != c) {
+        out.of_cell[c] = kNone;
+        merged.push_back(static_cast<Index>(c));
+      }
+  info.merged_vertices += merged.size();
+  for (std::size_t c = 0; c < n; ++c)
+    if (out.of_cell[c] != kNone) {
+      out.of_cell[c] = static_cast<Index>(out.cell.size());
+      out.cell.push_back(static_cast<Index>(c));
+    }
+  for (Index c : merged) out.of_cell[c] = out.of_cell[classes->find(c)];
+  return out;
+}
+
+/// The vertices of the used cells: circumcentre, circumradius (the Delaunay ball), generators =
+/// the cell's 4 corners (sorted). The complex has no vertex column yet: its vectors are filled
+/// in place, in parallel.
+void add_cell_vertices(MedialComplex& medial, const CellVertices& cells, const DelaunayTetrahedralization& dt,
+                       const std::vector<Index>& original, bool parallel) {
+  const std::size_t nv = cells.cell.size();
+  medial.centres.resize(nv);
+  medial.radii.resize(nv);
+  medial.generators.resize(nv);
+  services::for_blocks(nv, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const Index c = cells.cell[v];
+      medial.centres[v] = dt.circumcentres[c];
+      medial.radii[v] = dt.circumradii[c];
+      std::array<Index, 4> g;
+      for (int k = 0; k < 4; ++k) g[k] = original[dt.cells[c][k]];
+      std::sort(g.begin(), g.end());
+      medial.generators[v].assign(g.begin(), g.end());
+    }
+  });
+}
+
+/// The clipped ray ends (Unbounded::Clip): their vertices follow the cells' vertices.
+struct RayVertices {
+  std::vector<std::int64_t> rays;  ///< hull facets (cell·4 + k) of the kept rays, sorted, each once
+  Index first = 0;                 ///< the vertex of rays[0]
+
+  Index of(std::int64_t ray) const {
+    return first + static_cast<Index>(std::lower_bound(rays.begin(), rays.end(), ray) - rays.begin());
+  }
+  bool is_ray(Index vertex) const { return vertex >= first; }
+};
+
+/// Adds a vertex at each kept ray's end, clip_factor bounding-box diagonals from its
+/// circumcentre along the hull facet's normal; generators = the hull facet's 3 corners.
+RayVertices add_ray_vertices(MedialComplex& medial, const Selection& selection, const std::vector<char>& keep,
+                             const DelaunayTetrahedralization& dt, const Renumbered& points, double ray_length) {
+  RayVertices out;
+  for (std::size_t i = 0; i < selection.selected.size(); ++i) {
+    const Selected& s = selection.selected[i];
+    if (keep[i] && s.open) out.rays.push_back(s.first_ray), out.rays.push_back(s.last_ray);
+  }
+  std::sort(out.rays.begin(), out.rays.end());
+  out.rays.erase(std::unique(out.rays.begin(), out.rays.end()), out.rays.end());
+  out.first = static_cast<Index>(medial.num_vertices());
+  for (std::int64_t ray : out.rays) {
+    const Index c = static_cast<Index>(ray / 4);
+    const int k = static_cast<int>(ray % 4);
+    const auto f = facet_corners(dt.cells[c], k);
+    const Vec3 end = dt.circumcentres[c] + ray_length * unit(outward_normal(points.P, dt.cells[c], k));
+    const Index v = medial.add_vertex(end, (end - points.P[f[0]]).norm());
+    std::array<Index, 3> g{points.original[f[0]], points.original[f[1]], points.original[f[2]]};
+    std::sort(g.begin(), g.end());
+    medial.generators[v].assign(g.begin(), g.end());
+  }
+  return out;
+}
+
+/// An edge of the closure, before sorting and deduplication.
+struct EdgeRecord {
+  Index a, b;
+  int diagonal, clipped;
+  bool operator<(const EdgeRecord& o) const {
+    return a != o.a ? a < o.a : b != o.b ? b < o.b : diagonal != o.diagonal ? diagonal < o.diagonal : clipped > o.clipped;
+  }
+};
+
+/// The triangles, face labels and fields, and edges of one block of kept facets.
+struct FacetBlock {
+  std::vector<Tri> faces;
+  std::vector<int> polygon, p, q, conditions, unbounded;
+  std::vector<double> angle, ratio;
+  std::vector<EdgeRecord> edges;
+  int facets = 0, degenerate = 0;
+};
+
+/// The vertex cycle of a kept facet around p → q: its cells' vertices (consecutive repeats after
+/// merging dropped), between its two ray ends when it is open.
+void facet_cycle(const Selected& s, const Index* ring, const std::vector<Index>& cell_vertex, const RayVertices& rays,
+                 std::vector<Index>& cycle) {
+  cycle.clear();
+  if (s.open) cycle.push_back(rays.of(s.first_ray));
+  for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+    const Index vtx = cell_vertex[ring[k]];
+    if (cycle.empty() || cycle.back() != vtx) cycle.push_back(vtx);
+  }
+  if (s.open) cycle.push_back(rays.of(s.last_ray));
+  while (cycle.size() > 1 && cycle.back() == cycle.front()) cycle.pop_back();
+}
+
+/// Adds a facet to its block: its boundary edges, then its fan triangles from the first vertex
+/// with their labels and fields (a facet collapsed to a point or a segment: the closure only).
+void add_facet(const Selected& s, const std::vector<Index>& cycle, const RayVertices& rays,
+               const std::vector<Index>& original, FacetBlock& out) {
+  const std::size_t m = cycle.size();
+  for (std::size_t k = 0; k < m && m > 1; ++k) {
+    const Index a = cycle[k], c = cycle[(k + 1) % m];
+    if (m == 2 && k == 1) break;  // a segment: one edge
+    if (a != c) out.edges.push_back({std::min(a, c), std::max(a, c), 0, rays.is_ray(a) || rays.is_ray(c)});
+  }
+  const int number = out.facets++;
+  if (m < 3) {  // collapsed to a point or a segment: kept in the closure only
+    ++out.degenerate;
+    return;
+  }
+  const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
+  const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
+  for (std::size_t k = 1; k + 1 < m; ++k) {
+    const Index a = cycle[0], b2 = cycle[k], c = cycle[k + 1];
+    if (k >= 2 && a != b2)
+      out.edges.push_back({std::min(a, b2), std::max(a, b2), 1, rays.is_ray(a) || rays.is_ray(b2)});
+    if (a == b2 || b2 == c || a == c) continue;  // a non-consecutive repeat after merging
+    out.faces.push_back({a, b2, c});
+    out.polygon.push_back(number);
+    out.p.push_back(static_cast<int>(original[s.p]));
+    out.q.push_back(static_cast<int>(original[s.q]));
+    out.conditions.push_back(s.bits);
+    out.unbounded.push_back(s.open ? 1 : 0);
+    out.angle.push_back(angle);
+    out.ratio.push_back(ratio);
+  }
+}
+
+/// The kept facets, fan-triangulated, in blocks of kept facets (fixed blocks, in order).
+std::vector<FacetBlock> triangulate_facets(const Selection& selection, const std::vector<char>& keep,
+                                           const std::vector<Index>& cell_vertex, const RayVertices& rays,
+                                           const std::vector<Index>& original, bool parallel) {
+  std::vector<std::uint32_t> kept_facets;
+  for (std::size_t i = 0; i < selection.selected.size(); ++i)
+    if (keep[i]) kept_facets.push_back(static_cast<std::uint32_t>(i));
+  std::vector<FacetBlock> blocks(services::block_count(kept_facets.size(), kBlock));
+  services::for_blocks(kept_facets.size(), kBlock, parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::vector<Index> cycle;
+    for (std::size_t j = begin; j < end; ++j) {
+      const Selected& s = selection.selected[kept_facets[j]];
+      facet_cycle(s, selection.rings.data() + s.ring_begin, cell_vertex, rays, cycle);
+      add_facet(s, cycle, rays, original, blocks[b]);
+    }
+  });
+  return blocks;
+}
+
+/// The blocks concatenated in order (each emptied): their triangles with the face labels and
+/// fields into the complex, facet numbers made global; returns their edges.
+std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialComplex& medial, bool parallel,
+                                      MedialReport& info) {
+  std::vector<std::size_t> face_offset(blocks.size() + 1, 0), edge_offset(blocks.size() + 1, 0);
+  std::vector<int> facet_offset(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    face_offset[b + 1] = face_offset[b] + blocks[b].faces.size();
+    edge_offset[b + 1] = edge_offset[b] + blocks[b].edges.size();
+    facet_offset[b + 1] = facet_offset[b] + blocks[b].facets;
+    info.degenerate_facets += static_cast<std::size_t>(blocks[b].degenerate);
+  }
+  info.facets = static_cast<std::size_t>(facet_offset.back());
+  // The faces first, then their columns at that size (add_face would grow each column per face).
+  medial.faces.resize(face_offset.back());
+  auto& polygon = medial.add(kPolygon);
+  auto& label_p = medial.add(kDualP);
+  auto& label_q = medial.add(kDualQ);
+  auto& label_conditions = medial.add(kConditions);
+  auto& label_unbounded = medial.add(kUnbounded);
+  auto& field_angle = medial.add(kAngle);
+  auto& field_ratio = medial.add(kRatio);
+  std::vector<EdgeRecord> edges(edge_offset.back());
+  const auto gather = [&](std::size_t b) {
+    FacetBlock& block = blocks[b];
+    const auto at = static_cast<std::ptrdiff_t>(face_offset[b]);
+    std::copy(block.faces.begin(), block.faces.end(), medial.faces.begin() + at);
+    std::transform(block.polygon.begin(), block.polygon.end(), polygon.begin() + at,
+                   [&](int local) { return facet_offset[b] + local; });
+    std::copy(block.p.begin(), block.p.end(), label_p.begin() + at);
+    std::copy(block.q.begin(), block.q.end(), label_q.begin() + at);
+    std::copy(block.conditions.begin(), block.conditions.end(), label_conditions.begin() + at);
+    std::copy(block.unbounded.begin(), block.unbounded.end(), label_unbounded.begin() + at);
+    std::copy(block.angle.begin(), block.angle.end(), field_angle.begin() + at);
+    std::copy(block.ratio.begin(), block.ratio.end(), field_ratio.begin() + at);
+    std::copy(block.edges.begin(), block.edges.end(), edges.begin() + static_cast<std::ptrdiff_t>(edge_offset[b]));
+    block = FacetBlock{};
+  };
+  if (parallel) tbb::parallel_for(std::size_t{0}, blocks.size(), gather);
+  else for (std::size_t b = 0; b < blocks.size(); ++b) gather(b);
+  return edges;
+}
+
+/// Sorted by (a, b), each edge once (a Voronoi edge bounds up to three selected facets): a
+/// counting sort by a, then each (short) bucket sorted and deduplicated.
+std::vector<EdgeRecord> sort_unique_edges(const std::vector<EdgeRecord>& edges, std::size_t nv, bool parallel) {
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (const EdgeRecord& e : edges) ++start[e.a + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<EdgeRecord> bucketed(edges.size());
+  {
+    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+    for (const EdgeRecord& e : edges) bucketed[cursor[e.a]++] = e;
+  }
+  std::vector<std::uint32_t> kept(nv, 0);
+  const auto sort_bucket = [&](std::size_t v) {
+    const auto first = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]);
+    const auto last = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    std::sort(first, last);
+    kept[v] = static_cast<std::uint32_t>(
+        std::unique(first, last, [](const EdgeRecord& x, const EdgeRecord& y) { return x.b == y.b; }) - first);
+  };
+  if (parallel) tbb::parallel_for(std::size_t{0}, nv, sort_bucket);
+  else for (std::size_t v = 0; v < nv; ++v) sort_bucket(v);
+  std::vector<EdgeRecord> out;
+  out.reserve(edges.size());
+  for (std::size_t v = 0; v < nv; ++v)
+    out.insert(out.end(), bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]),
+               bucketed.begin() + static_cast<std::ptrdiff_t>(start[v] + kept[v]));
+  return out;
+}
+
+/// The closure's edges with their labels `fan_diagonal` and, when clipping, `clipped`. The edges
+/// first, then their columns at that size (add_edge would grow each column per edge).
+void add_edges(MedialComplex& medial, const std::vector<EdgeRecord>& edges, bool clip) {
+  medial.edges.reserve(edges.size());
+  for (const EdgeRecord& e : edges) medial.edges.push_back({e.a, e.b});
+  auto& fan_diagonal = medial.add(kFanDiagonal);
+  for (std::size_t i = 0; i < edges.size(); ++i) fan_diagonal[i] = edges[i].diagonal;
+  if (!clip) return;
+  auto& clipped = medial.add(kClipped);
+  for (std::size_t i = 0; i < edges.size(); ++i) clipped[i] = edges[i].clipped;
+}
+
+}  // namespace
+
+MedialComplex build_complex(const Renumbered& points, const DelaunayTetrahedralization& dt, const Selection& selection,
+                            const std::vector<char>& keep, const MedialOptions& options, MedialReport& info) {
+  const double diagonal = bbox_diagonal(points.P, dt);
+  std::optional<UnionFind> classes = merge_close_cells(selection, keep, dt, options.merge_tolerance * diagonal);
+  const CellVertices cells = number_cells(selection, keep, dt.cells.size(), classes, info);
+  MedialComplex medial;
+  medial.generator_kind = options.generator_kind;
+  add_cell_vertices(medial, cells, dt, points.original, options.parallel);
+  const RayVertices rays = add_ray_vertices(medial, selection, keep, dt, points, options.clip_factor * diagonal);
+  std::vector<FacetBlock> blocks = triangulate_facets(selection, keep, cells.of_cell, rays, points.original,
+                                                      options.parallel);
+  const std::vector<EdgeRecord> edges = gather_facets(blocks, medial, options.parallel, info);
+  add_edges(medial, sort_unique_edges(edges, medial.num_vertices(), options.parallel),
+            options.unbounded == Unbounded::Clip);
+  return medial;
+}
+
+}  // namespace medax::dey_zhao

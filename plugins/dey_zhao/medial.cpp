@@ -5,6 +5,7 @@
 
 #include <medax/services/blocks.hpp>
 #include <medax/services/delaunay_rings.hpp>
+#include <medax/services/morton.hpp>
 #include <medax/union_find.hpp>
 
 #include <tbb/parallel_for.h>
@@ -55,25 +56,15 @@ std::vector<Index> spatial_order(const std::vector<Vec3>& P, bool parallel) {
   if (n == 0) return order;
   Vec3 lo = P[0], hi = P[0];
   for (const Vec3& p : P) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  const auto spread = [](std::uint64_t v) {  // 21 bits to every third bit
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
   std::vector<std::pair<std::uint64_t, Index>> keys(n);
   const auto key = [&](std::size_t i) {
-    std::uint64_t code = 0;
+    std::uint64_t cell[3];
     for (int a = 0; a < 3; ++a) {
       const double extent = hi[a] - lo[a];
       const double f = extent > 0 ? (P[i][a] - lo[a]) / extent : 0.0;
-      const auto q = static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, std::floor(f * 2097152.0))));
-      code |= spread(q) << a;
+      cell[a] = static_cast<std::uint64_t>(std::min(2097151.0, std::max(0.0, std::floor(f * 2097152.0))));
     }
-    keys[i] = {code, static_cast<Index>(i)};
+    keys[i] = {services::morton_code(cell[0], cell[1], cell[2]), static_cast<Index>(i)};
   };
   if (parallel) {
     tbb::parallel_for(std::size_t{0}, n, key);

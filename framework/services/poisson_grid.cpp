@@ -1,26 +1,13 @@
 #include "poisson_grid.hpp"
 
+#include <medax/services/morton.hpp>
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
 
 namespace medax::services::poisson_detail {
-
-namespace {
-
-/// Spreads the low 21 bits of x to every third bit (one axis of a Morton code).
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
-}  // namespace
 
 CellGrid::CellGrid(const std::vector<Vec3>& points, double side) {
   if (points.empty()) {
@@ -36,7 +23,7 @@ CellGrid::CellGrid(const std::vector<Vec3>& points, double side) {
   std::vector<std::pair<std::uint64_t, Index>> morton(points.size());
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
     const auto c = cell_of(points[i]);
-    morton[i] = {spread_bits(c[0]) << 2 | spread_bits(c[1]) << 1 | spread_bits(c[2]), static_cast<Index>(i)};
+    morton[i] = {morton_code(c[0], c[1], c[2]), static_cast<Index>(i)};
   });
   tbb::parallel_sort(morton.begin(), morton.end());
   order_.resize(points.size());

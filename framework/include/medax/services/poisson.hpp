@@ -28,14 +28,15 @@ struct PoissonDiskOptions {
   int max_threads = 0;
 };
 
-/// Exactly `count` samples by weighted sample elimination. Each sample's area is the share of
-/// candidates closest to it (with agreeing normals) times the candidates' area, so the areas
-/// sum to the surface area. Throws std::invalid_argument for a zero-area mesh or count 0.
+/// Exactly `count` samples by weighted sample elimination (Yuksel 2015). Each sample's area is
+/// its Voronoi cell among its 16 nearest samples (with agreeing normals) in its tangent plane,
+/// clipped to a disk of 0.75 packing spacings, all scaled so that the areas sum to the surface
+/// area. Throws std::invalid_argument for a zero-area mesh or count 0.
 OrientedSamples sample_poisson_count(const SurfaceMesh& mesh, std::size_t count, std::mt19937_64& rng,
                                      const PoissonDiskOptions& options = {});
 
 /// Samples no two of which (with agreeing normals) are closer than `radius`, by dart throwing
-/// over dense candidates. Areas as above. Throws std::invalid_argument for a zero-area mesh, a
+/// over dense candidates. Areas as above (clipped to 0.75 / 0.7 radii). Throws std::invalid_argument for a zero-area mesh, a
 /// radius ≤ 0, or a radius so small that over 50 million candidates would be needed.
 OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
                                       const PoissonDiskOptions& options = {});

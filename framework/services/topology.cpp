@@ -144,58 +144,77 @@ std::size_t boundary_rank(std::size_t num_edges, const std::vector<std::array<In
 
 }  // namespace
 
-ComplexTopology complex_topology(std::size_t num_vertices, const std::vector<Segment>& edges,
-                                 const std::vector<Tri>& faces) {
+namespace {
+
+/// The complex's distinct proper triangles and distinct edges (the listed ones and the triangles'
+/// sides; a face with two equal corners counts as its edge), each sorted.
+struct CellLists {
+  std::vector<std::array<Index, 3>> triangles;
+  std::vector<Edge> edges;
+};
+
+CellLists distinct_cells(std::size_t num_vertices, const std::vector<Segment>& edges, const std::vector<Tri>& faces) {
   const auto check = [num_vertices](Index v, const char* kind, std::size_t i) {
     if (v >= num_vertices)
       throw std::invalid_argument(
           fmt::format("complex topology: {} {} refers to vertex {} of {}", kind, i, v, num_vertices));
   };
-  std::vector<std::array<Index, 3>> tris;
-  std::vector<Edge> all_edges;
-  tris.reserve(faces.size());
-  all_edges.reserve(edges.size() + 3 * faces.size());
+  CellLists c;
+  c.triangles.reserve(faces.size());
+  c.edges.reserve(edges.size() + 3 * faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) {
     std::array<Index, 3> k = faces[f];
     for (Index v : k) check(v, "face", f);
     std::sort(k.begin(), k.end());
     if (k[0] != k[1] && k[1] != k[2]) {
-      tris.push_back(k);
-      all_edges.insert(all_edges.end(), {{k[0], k[1]}, {k[1], k[2]}, {k[0], k[2]}});
+      c.triangles.push_back(k);
+      c.edges.insert(c.edges.end(), {{k[0], k[1]}, {k[1], k[2]}, {k[0], k[2]}});
     } else if (k[0] != k[2]) {
-      all_edges.push_back({k[0], k[2]});
+      c.edges.push_back({k[0], k[2]});
     }
   }
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const Segment& s = edges[e];
     for (Index v : s) check(v, "edge", e);
-    if (s[0] != s[1]) all_edges.push_back({std::min(s[0], s[1]), std::max(s[0], s[1])});
+    if (s[0] != s[1]) c.edges.push_back({std::min(s[0], s[1]), std::max(s[0], s[1])});
   }
-  std::sort(tris.begin(), tris.end());
-  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-  std::sort(all_edges.begin(), all_edges.end());
-  all_edges.erase(std::unique(all_edges.begin(), all_edges.end()), all_edges.end());
+  std::sort(c.triangles.begin(), c.triangles.end());
+  c.triangles.erase(std::unique(c.triangles.begin(), c.triangles.end()), c.triangles.end());
+  std::sort(c.edges.begin(), c.edges.end());
+  c.edges.erase(std::unique(c.edges.begin(), c.edges.end()), c.edges.end());
+  return c;
+}
 
-  ComplexTopology t;
-  t.vertices = num_vertices;
-  t.edges = all_edges.size();
-  t.faces = tris.size();
-  t.euler = static_cast<long long>(t.vertices) - static_cast<long long>(t.edges) + static_cast<long long>(t.faces);
-
-  UnionFind components(num_vertices);
-  for (const Edge& e : all_edges) components.unite(e[0], e[1]);
-  t.b0 = components.count();
-
+/// Each triangle's three edges, as sorted indices into the sorted edge list.
+std::vector<std::array<Index, 3>> triangle_edges(const CellLists& c) {
   const auto edge_index = [&](Index a, Index b) {
-    return static_cast<Index>(std::lower_bound(all_edges.begin(), all_edges.end(), Edge{a, b}) - all_edges.begin());
+    return static_cast<Index>(std::lower_bound(c.edges.begin(), c.edges.end(), Edge{a, b}) - c.edges.begin());
   };
-  std::vector<std::array<Index, 3>> face_edges(tris.size());
-  for (std::size_t f = 0; f < tris.size(); ++f) {
-    const auto& k = tris[f];
+  std::vector<std::array<Index, 3>> face_edges(c.triangles.size());
+  for (std::size_t f = 0; f < c.triangles.size(); ++f) {
+    const auto& k = c.triangles[f];
     face_edges[f] = {edge_index(k[0], k[1]), edge_index(k[1], k[2]), edge_index(k[0], k[2])};
     std::sort(face_edges[f].begin(), face_edges[f].end());
   }
-  const std::size_t rank2 = boundary_rank(all_edges.size(), face_edges);
+  return face_edges;
+}
+
+}  // namespace
+
+ComplexTopology complex_topology(std::size_t num_vertices, const std::vector<Segment>& edges,
+                                 const std::vector<Tri>& faces) {
+  const CellLists cells = distinct_cells(num_vertices, edges, faces);
+  ComplexTopology t;
+  t.vertices = num_vertices;
+  t.edges = cells.edges.size();
+  t.faces = cells.triangles.size();
+  t.euler = static_cast<long long>(t.vertices) - static_cast<long long>(t.edges) + static_cast<long long>(t.faces);
+
+  UnionFind components(num_vertices);
+  for (const Edge& e : cells.edges) components.unite(e[0], e[1]);
+  t.b0 = components.count();
+  // Over Z/2: b1 = E − rank ∂1 − rank ∂2, b2 = F − rank ∂2, with rank ∂1 = V − b0.
+  const std::size_t rank2 = boundary_rank(cells.edges.size(), triangle_edges(cells));
   const std::size_t rank1 = t.vertices - t.b0;
   t.b2 = t.faces - rank2;
   t.b1 = t.edges - rank1 - rank2;

@@ -86,6 +86,12 @@ class Engine {
   /// Passes until one carves nothing (at most options.max_passes).
   void run_passes(const ProgressFn& progress);
   std::size_t propagate(EdgeId seed);
+  /// The ε test and carving of the sheet across a closed singular path from face fx (its
+  /// half-edges are marked done); true when the sheet was carved away.
+  bool carve_beyond(const HalfPath& path, EdgeId fx, std::unordered_set<HalfEdge, HalfEdgeHash>& done);
+  /// After a carving, the path's edges that became regular let the labelled sheet grow into the
+  /// unlabelled one across them.
+  void grow_across_path(const HalfPath& path, std::deque<HalfEdge>& queue);
   std::size_t simplify_boundaries();
   /// Carves the ends of curves (nodes with three surface facets) covered within ε.
   std::size_t prune_leaves();

@@ -42,13 +42,47 @@ EdgeId Engine::choose_seed(int component) const {
   return first_face(best);
 }
 
+bool Engine::carve_beyond(const HalfPath& path, EdgeId fx, std::unordered_set<HalfEdge, HalfEdgeHash>& done) {
+  for (const HalfEdge& p : path.edges)
+    if (d.volumetric(d.face(p))) done.insert(d.side_nbr(p));
+  const std::vector<CellId> nodes = path_nodes(path);
+  std::vector<CellId> ring, seeds;
+  d.ring(fx, ring);
+  for (CellId c : ring)
+    if (!std::binary_search(nodes.begin(), nodes.end(), c)) seeds.push_back(c);
+  switch (carve(nodes, seeds, true)) {
+    case CarveOutcome::Removed: return true;
+    case CarveOutcome::Significant: break;
+    case CarveOutcome::NotSeparated: ++report.rejected_not_separated; break;
+    case CarveOutcome::NonManifold: ++report.rejected_manifold; break;
+    case CarveOutcome::TopologyChange: ++report.rejected_topology; break;
+  }
+  return false;
+}
+
+void Engine::grow_across_path(const HalfPath& path, std::deque<HalfEdge>& queue) {
+  for (const HalfEdge& p : path.edges) {
+    if (!d.is_medial_edge(p.t) || d.degree(p.t) != 2 || d.forced(p.t)) continue;
+    const auto v = d.facet_vertices(p.t);
+    EdgeId faces[2];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+      const EdgeId f = d.edge_of(p.t.cell, v[i], v[(i + 1) % 3]);
+      if (d.volumetric(f) && n < 2) faces[n++] = f;
+    }
+    if (n != 2) continue;
+    const int la = d.label(faces[0]), lb = d.label(faces[1]);
+    if (la >= 0 && lb < 0) label_sheet(faces[1], la, &queue);
+    else if (lb >= 0 && la < 0) label_sheet(faces[0], lb, &queue);
+  }
+}
+
 std::size_t Engine::propagate(EdgeId seed) {
   std::deque<HalfEdge> queue;
   std::unordered_set<HalfEdge, HalfEdgeHash> done;
   std::size_t removed = 0;
   label_sheet(seed, next_label++, &queue);
   std::size_t steps = 0;
-  std::vector<CellId> ring;
   while (!queue.empty()) {
     const HalfEdge e = queue.front();
     queue.pop_front();
@@ -62,46 +96,14 @@ std::size_t Engine::propagate(EdgeId seed) {
     if (d.label(fx) >= 0) continue;
     ++report.candidates;
     const HalfPath path = follow(x);
-    bool significant = true;
-    if (!path.closed) {
-      ++report.path_failures;
+    if (!path.closed) ++report.path_failures;
+    if (path.closed && carve_beyond(path, fx, done)) {
+      ++removed;
+      ++report.removals;
+      grow_across_path(path, queue);
     } else {
-      for (const HalfEdge& p : path.edges)
-        if (d.volumetric(d.face(p))) done.insert(d.side_nbr(p));
-      const std::vector<CellId> nodes = path_nodes(path);
-      d.ring(fx, ring);
-      std::vector<CellId> seeds;
-      for (CellId c : ring)
-        if (!std::binary_search(nodes.begin(), nodes.end(), c)) seeds.push_back(c);
-      switch (carve(nodes, seeds, true)) {
-        case CarveOutcome::Removed: significant = false; break;
-        case CarveOutcome::Significant: break;
-        case CarveOutcome::NotSeparated: ++report.rejected_not_separated; break;
-        case CarveOutcome::NonManifold: ++report.rejected_manifold; break;
-        case CarveOutcome::TopologyChange: ++report.rejected_topology; break;
-      }
-      if (!significant) {
-        ++removed;
-        ++report.removals;
-        // The path's edges lost a face: where two faces remain across a now regular edge, the
-        // labelled sheet grows into the unlabelled one.
-        for (const HalfEdge& p : path.edges) {
-          if (!d.is_medial_edge(p.t) || d.degree(p.t) != 2 || d.forced(p.t)) continue;
-          const auto v = d.facet_vertices(p.t);
-          EdgeId faces[2];
-          int n = 0;
-          for (int i = 0; i < 3; ++i) {
-            const EdgeId f = d.edge_of(p.t.cell, v[i], v[(i + 1) % 3]);
-            if (d.volumetric(f) && n < 2) faces[n++] = f;
-          }
-          if (n != 2) continue;
-          const int la = d.label(faces[0]), lb = d.label(faces[1]);
-          if (la >= 0 && lb < 0) label_sheet(faces[1], la, &queue);
-          else if (lb >= 0 && la < 0) label_sheet(faces[0], lb, &queue);
-        }
-      }
+      label_sheet(fx, next_label++, &queue);
     }
-    if (significant) label_sheet(fx, next_label++, &queue);
   }
   return removed;
 }

@@ -1,5 +1,8 @@
 #include <medax/services/sampling.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -61,23 +64,35 @@ OrientedSamples sample_uniform(const SurfaceMesh& mesh, std::size_t count, std::
   const double total = cumulative.empty() ? 0.0 : cumulative.back();
   if (!(total > 0)) throw std::invalid_argument("cannot sample a mesh with zero area");
   OrientedSamples s;
-  s.points.reserve(count);
-  s.normals.reserve(count);
+  s.points.resize(count);
+  s.normals.resize(count);
   s.areas.assign(count, total / static_cast<double>(count));
   // Explicit arithmetic instead of std distributions, whose output differs between library
   // implementations: the same seed gives the same samples everywhere.
   const auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
-  for (std::size_t i = 0; i < count; ++i) {
-    const double target = uniform() * total;
-    const std::size_t f = std::min<std::size_t>(
-        static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin()),
-        areas.size() - 1);
-    double u = uniform(), v = uniform();
-    if (u + v > 1) u = 1 - u, v = 1 - v;
-    const auto& [a, b, c] = mesh.faces[f];
-    s.points.push_back(mesh.vertices[a] + u * (mesh.vertices[b] - mesh.vertices[a]) +
-                       v * (mesh.vertices[c] - mesh.vertices[a]));
-    s.normals.push_back(normals[f]);
+  // Three draws per sample, in sample order (face, then u and v), drawn a block at a time; the
+  // samples of a block are then placed in parallel, so the result does not depend on threads.
+  constexpr std::size_t kBlock = std::size_t{1} << 16;
+  std::vector<double> draws;
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    const std::size_t n = std::min(kBlock, count - first);
+    draws.resize(3 * n);
+    for (double& x : draws) x = uniform();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+        const double target = draws[3 * k] * total;
+        const std::size_t f = std::min<std::size_t>(
+            static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), target) -
+                                     cumulative.begin()),
+            areas.size() - 1);
+        double u = draws[3 * k + 1], v = draws[3 * k + 2];
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        const auto& [a, b, c] = mesh.faces[f];
+        s.points[first + k] =
+            mesh.vertices[a] + u * (mesh.vertices[b] - mesh.vertices[a]) + v * (mesh.vertices[c] - mesh.vertices[a]);
+        s.normals[first + k] = normals[f];
+      }
+    });
   }
   return s;
 }

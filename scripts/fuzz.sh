@@ -33,9 +33,12 @@ echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { return
 rm -f /tmp/medax-fuzz-probe.$$
 
 flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined -fsanitize=fuzzer-no-link"
+# The build's output is kept in build-fuzz/build.log and shown when it fails.
+mkdir -p "$build"
+build_failed() { tail -n 30 "$build/build.log" >&2; die "building the fuzz harnesses failed (whole log: $build/build.log)"; }
 cmake -S "$root/tests/fuzz/project" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Fuzz -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_CXX_FLAGS="$flags" >/dev/null
-ninja -C "$build" -j "${MEDAX_FUZZ_JOBS:-1}" "${targets[@]/#/fuzz_}" >/dev/null
+  -DCMAKE_CXX_FLAGS="$flags" >"$build/build.log" 2>&1 || build_failed
+ninja -C "$build" -j "${MEDAX_FUZZ_JOBS:-1}" "${targets[@]/#/fuzz_}" >>"$build/build.log" 2>&1 || build_failed
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

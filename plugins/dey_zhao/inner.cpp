@@ -19,27 +19,32 @@ using services::DelaunayTetrahedralization;
 // ---------------------------------------------------------------------------------------------
 // (a) Delaunay mesh triangles: wall-parity flood fill over the cells.
 
-bool label_cells_by_surface(const DelaunayTetrahedralization& dt, const SurfaceMesh& mesh, std::vector<char>& inside,
-                            std::size_t& missing) {
-  const std::size_t n = dt.cells.size();
-  const std::size_t np = dt.point_vertex.size();
-  missing = 0;
-  // Cells around each (representative) point, CSR.
-  std::vector<std::uint32_t> offsets(np + 1, 0);
-  for (const auto& c : dt.cells)
-    for (Index x : c) ++offsets[x + 1];
-  for (std::size_t i = 0; i < np; ++i) offsets[i + 1] += offsets[i];
-  std::vector<std::uint32_t> incident(offsets[np]);
-  {
-    std::vector<std::uint32_t> cursor(offsets.begin(), offsets.end() - 1);
-    for (std::size_t c = 0; c < n; ++c)
-      for (Index x : dt.cells[c]) incident[cursor[x]++] = static_cast<std::uint32_t>(c);
-  }
-  const auto rep = [&](Index v) { return v < np ? dt.vertex_point[dt.point_vertex[v]] : Index(~0u); };
+namespace {
 
-  // Wall bits: bit k of wall[c] when the facet of c opposite corner k is a mesh triangle (mod 2,
-  // so a triangle given twice cancels, as it does for a ray-parity inside test).
-  std::vector<std::uint8_t> wall(n, 0);
+/// The cells around each point (CSR), for finding the cells of a facet.
+struct IncidentCells {
+  std::vector<std::uint32_t> offsets, cells;
+  explicit IncidentCells(const DelaunayTetrahedralization& dt) : offsets(dt.point_vertex.size() + 1, 0) {
+    const std::size_t np = dt.point_vertex.size();
+    for (const auto& c : dt.cells)
+      for (Index x : c) ++offsets[x + 1];
+    for (std::size_t i = 0; i < np; ++i) offsets[i + 1] += offsets[i];
+    cells.resize(offsets[np]);
+    std::vector<std::uint32_t> cursor(offsets.begin(), offsets.end() - 1);
+    for (std::size_t c = 0; c < dt.cells.size(); ++c)
+      for (Index x : dt.cells[c]) cells[cursor[x]++] = static_cast<std::uint32_t>(c);
+  }
+};
+
+/// Wall bits: bit k of wall[c] when the facet of c opposite corner k is a mesh triangle (mod 2,
+/// so a triangle given twice cancels, as it does for a ray-parity inside test). Counts in
+/// `missing` the triangles that are no Delaunay facet.
+std::vector<std::uint8_t> mesh_walls(const DelaunayTetrahedralization& dt, const SurfaceMesh& mesh,
+                                     std::size_t& missing) {
+  const std::size_t np = dt.point_vertex.size();
+  const IncidentCells incident(dt);
+  const auto rep = [&](Index v) { return v < np ? dt.vertex_point[dt.point_vertex[v]] : Index(~0u); };
+  std::vector<std::uint8_t> wall(dt.cells.size(), 0);
   for (const Tri& f : mesh.faces) {
     const Index a = rep(f[0]), b = rep(f[1]), c = rep(f[2]);
     if (a >= np || b >= np || c >= np) {
@@ -48,8 +53,8 @@ bool label_cells_by_surface(const DelaunayTetrahedralization& dt, const SurfaceM
     }
     if (a == b || b == c || a == c) continue;  // degenerate face: no area, no wall
     bool found = false;
-    for (std::uint32_t k = offsets[a]; k < offsets[a + 1] && !found; ++k) {
-      const std::uint32_t cell = incident[k];
+    for (std::uint32_t k = incident.offsets[a]; k < incident.offsets[a + 1] && !found; ++k) {
+      const std::uint32_t cell = incident.cells[k];
       const auto& corner = dt.cells[cell];
       int hit = 0, opposite = -1;
       for (int j = 0; j < 4; ++j) {
@@ -66,41 +71,49 @@ bool label_cells_by_surface(const DelaunayTetrahedralization& dt, const SurfaceM
     }
     if (!found) ++missing;
   }
-  if (missing) return false;
+  return wall;
+}
 
-  // Flood from outside the hull (parity 0), crossing walls flips the parity.
+/// Parity labels of the cells: 0 outside the hull, flipped by every wall crossed; throws when two
+/// paths disagree (the walls bound no closed surface).
+std::vector<signed char> flood_parity(const DelaunayTetrahedralization& dt, const std::vector<std::uint8_t>& wall) {
+  const std::size_t n = dt.cells.size();
   std::vector<signed char> label(n, -1);
   std::vector<std::uint32_t> queue;
   queue.reserve(n);
+  const auto reach = [&](std::size_t c, signed char l) {
+    if (label[c] == -1) {
+      label[c] = l;
+      queue.push_back(static_cast<std::uint32_t>(c));
+    } else if (label[c] != l) {
+      throw std::invalid_argument("inner selection: the mesh triangles are Delaunay facets but do not bound a "
+                                  "closed surface (inconsistent inside parity); run the `repair` stage first");
+    }
+  };
   for (std::size_t c = 0; c < n; ++c)
     for (int k = 0; k < 4; ++k)
-      if (dt.neighbours[c][k] == DelaunayTetrahedralization::kInfinite) {
-        const signed char l = (wall[c] >> k) & 1;
-        if (label[c] == -1) {
-          label[c] = l;
-          queue.push_back(static_cast<std::uint32_t>(c));
-        } else if (label[c] != l) {
-          throw std::invalid_argument("inner selection: the mesh triangles are Delaunay facets but do not bound a "
-                                      "closed surface (inconsistent inside parity); run the `repair` stage first");
-        }
-      }
+      if (dt.neighbours[c][k] == DelaunayTetrahedralization::kInfinite) reach(c, (wall[c] >> k) & 1);
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::uint32_t c = queue[head];
     for (int k = 0; k < 4; ++k) {
       const std::int64_t nb = dt.neighbours[c][k];
-      if (nb == DelaunayTetrahedralization::kInfinite) continue;
-      const signed char l = static_cast<signed char>(label[c] ^ ((wall[c] >> k) & 1));
-      if (label[nb] == -1) {
-        label[nb] = l;
-        queue.push_back(static_cast<std::uint32_t>(nb));
-      } else if (label[nb] != l) {
-        throw std::invalid_argument("inner selection: the mesh triangles are Delaunay facets but do not bound a "
-                                    "closed surface (inconsistent inside parity); run the `repair` stage first");
-      }
+      if (nb != DelaunayTetrahedralization::kInfinite)
+        reach(static_cast<std::size_t>(nb), static_cast<signed char>(label[c] ^ ((wall[c] >> k) & 1)));
     }
   }
-  inside.assign(n, 0);
-  for (std::size_t c = 0; c < n; ++c) inside[c] = label[c] == 1;
+  return label;
+}
+
+}  // namespace
+
+bool label_cells_by_surface(const DelaunayTetrahedralization& dt, const SurfaceMesh& mesh, std::vector<char>& inside,
+                            std::size_t& missing) {
+  missing = 0;
+  const std::vector<std::uint8_t> wall = mesh_walls(dt, mesh, missing);
+  if (missing) return false;
+  const std::vector<signed char> label = flood_parity(dt, wall);
+  inside.assign(dt.cells.size(), 0);
+  for (std::size_t c = 0; c < dt.cells.size(); ++c) inside[c] = label[c] == 1;
   return true;
 }
 

@@ -225,6 +225,42 @@ void refine_uncertified(const EnvelopeBvh& bvh, const std::vector<Vec3>& points,
   }
 }
 
+/// The deepest primitive at x, the search seeded with the primitive under the nearest boundary
+/// sample when the samples carry their primitives.
+Hit seeded_query(const EnvelopeBvh& bvh, const Vec3& x, const PointIndex* index, const EnvelopeSamples& samples) {
+  Hit start{kInf, -1};
+  if (index && samples.primitives.size() == samples.points.size()) {
+    const Index p = samples.primitives[index->nearest(x).first];
+    if (p < bvh.bvh_index().size()) {
+      const std::int64_t b = bvh.bvh_index()[p];
+      start = {bvh.primitive(b).value(x), b};
+    }
+  }
+  return bvh.query(x, kInf, -kInf, -kInf, start);
+}
+
+/// Inside E: true when the closest point of the deepest primitive's ball lies on no other
+/// primitive, so that the depth −φ(x) is exactly the distance to ∂E.
+bool depth_is_exact(const EnvelopeBvh& bvh, const Vec3& x, const Hit& hit, double tolerance) {
+  const Eval ball = bvh.ball(x, hit.prim);
+  const Vec3 away = x - ball.c;
+  const double len = away.norm();
+  if (!(len > 0 || ball.r == 0)) return false;
+  const Vec3 q = len > 0 ? Vec3(ball.c + ball.r * away / len) : ball.c;
+  return bvh.query(q, tolerance, -tolerance, tolerance, {0.0, hit.prim}).d >= -tolerance;
+}
+
+Uncertified collect_uncertified(const std::vector<Hit>& uncertified) {
+  Uncertified open;
+  for (std::size_t i = 0; i < uncertified.size(); ++i)
+    if (uncertified[i].prim >= 0) {
+      open.index.push_back(i);
+      open.depth.push_back(uncertified[i].d);
+      open.prim.push_back(uncertified[i].prim);
+    }
+  return open;
+}
+
 }  // namespace
 
 std::vector<double> Envelope::boundary_distances(const std::vector<Vec3>& points, const EnvelopeSamples& samples,
@@ -244,37 +280,17 @@ std::vector<double> Envelope::boundary_distances(const std::vector<Vec3>& points
   const double tolerance = 1e-9 * (hi - lo).norm();
   std::unique_ptr<PointIndex> index;
   if (!samples.points.empty()) index = std::make_unique<PointIndex>(samples.points);
-  const bool hints = index && samples.primitives.size() == samples.points.size();
   const envelope_detail::CancelPoll poll(cancel);
   std::vector<Hit> uncertified(points.size(), Hit{-1, -1});  // depth and deepest primitive; −1: exact
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
     poll.at(i);
     const Vec3& x = points[i];
-    // The primitive under the nearest boundary sample seeds the search.
-    Hit start{kInf, -1};
-    if (hints) {
-      const Index p = samples.primitives[index->nearest(x).first];
-      if (p < bvh.bvh_index().size()) {
-        const std::int64_t b = bvh.bvh_index()[p];
-        start = {bvh.primitive(b).value(x), b};
-      }
-    }
-    const Hit hit = bvh.query(x, kInf, -kInf, -kInf, start);
+    const Hit hit = seeded_query(bvh, x, index.get(), samples);
     if (signed_distances_out) (*signed_distances_out)[i] = hit.d;
-    if (hit.d >= 0) {
-      out[i] = hit.d;
-      return;
-    }
     const double depth = -hit.d;
-    const Eval ball = bvh.ball(x, hit.prim);
-    const Vec3 away = x - ball.c;
-    const double len = away.norm();
-    if (len > 0 || ball.r == 0) {
-      const Vec3 q = len > 0 ? Vec3(ball.c + ball.r * away / len) : ball.c;
-      if (bvh.query(q, tolerance, -tolerance, tolerance, {0.0, hit.prim}).d >= -tolerance) {
-        out[i] = depth;
-        return;
-      }
+    if (hit.d >= 0 || depth_is_exact(bvh, x, hit, tolerance)) {
+      out[i] = hit.d >= 0 ? hit.d : depth;
+      return;
     }
     out[i] = index ? std::max(depth, index->nearest(x).second) : depth;
     uncertified[i] = {depth, hit.prim};
@@ -282,16 +298,8 @@ std::vector<double> Envelope::boundary_distances(const std::vector<Vec3>& points
   // The local grid is at most kMaxRefinement times finer than the samples' (bounded cost).
   constexpr double kMaxRefinement = 4;
   const double step = std::max(refine_step, samples.step / kMaxRefinement);
-  if (refine_step > 0 && index && step < samples.step) {
-    Uncertified open;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (uncertified[i].prim >= 0) {
-        open.index.push_back(i);
-        open.depth.push_back(uncertified[i].d);
-        open.prim.push_back(uncertified[i].prim);
-      }
-    refine_uncertified(bvh, points, open, step, out, poll);
-  }
+  if (refine_step > 0 && index && step < samples.step)
+    refine_uncertified(bvh, points, collect_uncertified(uncertified), step, out, poll);
   return out;
 }
 

@@ -25,12 +25,6 @@ struct Affected {
   std::vector<Index> verts;
 };
 
-template <typename T>
-void sort_unique(std::vector<T>& v) {
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
 Affected affected_elements(const Dual& d, const std::vector<CellId>& region) {
   Affected a;
   for (CellId c : region) {

@@ -126,6 +126,28 @@ class Dual {
   CellId edge_cell(EdgeId e) const { return edge_cell_[e]; }
   /// The cells around edge e in rotation order (the ring of its Voronoi face).
   void ring(EdgeId e, std::vector<CellId>& out) const;
+  /// Calls f(facet) once for every facet between two solid cells: the medial edges of the solid.
+  template <typename F>
+  void for_each_solid_facet(const F& f) const {
+    for (CellId c = 0; c < num_cells(); ++c) {
+      if (!solid(c)) continue;
+      for (int k = 0; k < 4; ++k) {
+        const CellId n = neighbour(c, k);
+        if (solid(n) && n > c) f(facet(c, k));
+      }
+    }
+  }
+  /// Calls f(half_edge) for both half-edges, u → v then v → u, of each volumetric side of facet t.
+  template <typename F>
+  void for_each_half_edge(const Facet& t, const F& f) const {
+    const auto v = facet_vertices(t);
+    for (int i = 0; i < 3; ++i) {
+      const Index a = v[i], b = v[(i + 1) % 3];
+      if (!volumetric(edge_of(t.cell, a, b))) continue;
+      f(HalfEdge{t, a, b});
+      f(HalfEdge{t, b, a});
+    }
+  }
   /// The facets around edge e, in the same order: out[i] between ring[i] and ring[i+1].
   void ring_facets(EdgeId e, std::vector<Facet>& out) const;
   int label(EdgeId e) const { return label_[e]; }

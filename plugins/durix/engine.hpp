@@ -8,6 +8,7 @@
 #include "dual.hpp"
 #include "durix.hpp"
 
+#include <algorithm>
 #include <deque>
 #include <map>
 #include <optional>
@@ -25,6 +26,13 @@ struct HalfPath {
   /// Corner changes that did not cross a surface edge of M_w (must stay 0).
   std::size_t corner_errors = 0;
 };
+
+/// Sorts v and drops repeats.
+template <typename T>
+void sort_unique(std::vector<T>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
 
 enum class CarveOutcome { Removed, Significant, NotSeparated, NonManifold, TopologyChange };
 

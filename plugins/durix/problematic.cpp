@@ -86,12 +86,6 @@ std::vector<CellId> free_chain_ends(const Dual& d, const std::vector<Facet>& cha
   return free_ends;
 }
 
-template <typename T>
-void sort_unique(std::vector<T>& v) {
-  std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-}
-
 }  // namespace
 
 bool Engine::problematic(const Facet& f) const {
@@ -192,15 +186,9 @@ void Engine::split_fin(const Facet& edge, FinScratch& z) {
 
 std::vector<Facet> Engine::problematic_edges() const {
   std::vector<Facet> out;
-  for (CellId c = 0; c < d.num_cells(); ++c) {
-    if (!d.solid(c)) continue;
-    for (int k = 0; k < 4; ++k) {
-      const CellId n = d.neighbour(c, k);
-      if (!d.solid(n) || n < c) continue;
-      const Facet f = d.facet(c, k);
-      if (problematic(f)) out.push_back(f);
-    }
-  }
+  d.for_each_solid_facet([&](const Facet& f) {
+    if (problematic(f)) out.push_back(f);
+  });
   return out;
 }
 

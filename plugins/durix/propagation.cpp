@@ -142,18 +142,6 @@ std::optional<Spike> boundary_spike(const Engine& engine, const HalfEdge& h) {
   return Spike{ua.norm(), tip};
 }
 
-/// Calls `consider` with both half-edges of each volumetric side of facet t.
-template <typename F>
-void both_half_edges(const Dual& d, const Facet& t, const F& consider) {
-  const auto v = d.facet_vertices(t);
-  for (int i = 0; i < 3; ++i) {
-    const Index x = v[i], y = v[(i + 1) % 3];
-    if (!d.volumetric(d.edge_of(t.cell, x, y))) continue;
-    consider(HalfEdge{t, x, y});
-    consider(HalfEdge{t, y, x});
-  }
-}
-
 /// The tip's solid neighbours (sorted) when it has at least two surface facets; none otherwise.
 std::vector<CellId> carvable_tip_neighbours(const Dual& d, CellId tip) {
   std::vector<CellId> neighbours;
@@ -201,7 +189,7 @@ std::size_t Engine::simplify_boundaries() {
     for (CellId n : neighbours)
       for (int k = 0; k < 4; ++k) {
         const Facet t = d.facet(n, k);
-        if (d.solid(d.neighbour(n, k)) && d.degree(t) == 1) both_half_edges(d, t, consider);
+        if (d.solid(d.neighbour(n, k)) && d.degree(t) == 1) d.for_each_half_edge(t, consider);
       }
   }
   return removed;

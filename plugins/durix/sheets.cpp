@@ -106,34 +106,23 @@ void Engine::census_paths() {
   std::unordered_set<HalfEdge, HalfEdgeHash> visited;
   std::map<Facet, int> boundary_uses;
   std::size_t boundary_edges = 0;
-  for (CellId c = 0; c < d.num_cells(); ++c) {
-    if (!d.solid(c)) continue;
-    for (int k = 0; k < 4; ++k) {
-      const CellId n = d.neighbour(c, k);
-      if (!d.solid(n) || n < c) continue;
-      const Facet t = d.facet(c, k);
-      const int deg = d.degree(t);
-      if (deg == 1) ++boundary_edges;
-      if (deg == 0 || (deg == 2 && !d.forced(t))) continue;
-      const auto v = d.facet_vertices(t);
-      for (int i = 0; i < 3; ++i)
-        for (int side = 0; side < 2; ++side) {
-          const Index a = side ? v[(i + 1) % 3] : v[i], b = side ? v[i] : v[(i + 1) % 3];
-          const HalfEdge h{t, a, b};
-          if (!d.volumetric(d.face(h)) || visited.count(h)) continue;
-          const bool boundary = deg == 1;
-          if (boundary ? !boundary_half_edge(h) : !singular(h)) continue;
-          const HalfPath path = boundary ? follow_boundary(h) : follow(h);
-          (boundary ? report.boundary_paths : report.singular_paths) += 1;
-          if (!path.closed) ++report.unclosed_paths;
-          report.loop_corner_errors += path.corner_errors;
-          for (const HalfEdge& p : path.edges) {
-            visited.insert(p);
-            if (boundary) ++boundary_uses[p.t];
-          }
-        }
-    }
-  }
+  d.for_each_solid_facet([&](const Facet& t) {
+    const int deg = d.degree(t);
+    if (deg == 1) ++boundary_edges;
+    if (deg == 0 || (deg == 2 && !d.forced(t))) return;
+    const bool boundary = deg == 1;
+    d.for_each_half_edge(t, [&](const HalfEdge& h) {
+      if (visited.count(h) || (boundary ? !boundary_half_edge(h) : !singular(h))) return;
+      const HalfPath path = boundary ? follow_boundary(h) : follow(h);
+      (boundary ? report.boundary_paths : report.singular_paths) += 1;
+      if (!path.closed) ++report.unclosed_paths;
+      report.loop_corner_errors += path.corner_errors;
+      for (const HalfEdge& p : path.edges) {
+        visited.insert(p);
+        if (boundary) ++boundary_uses[p.t];
+      }
+    });
+  });
   for (const auto& [t, uses] : boundary_uses) report.boundary_multiplicity_errors += uses != 2;
   if (boundary_uses.size() != boundary_edges)
     report.boundary_multiplicity_errors += boundary_edges - std::min(boundary_edges, boundary_uses.size());

@@ -19,21 +19,7 @@ namespace {
 /// medial edge).
 std::vector<HalfEdge> half_edges(const Dual& d) {
   std::vector<HalfEdge> out;
-  for (CellId c = 0; c < d.num_cells(); ++c) {
-    if (!d.solid(c)) continue;
-    for (int k = 0; k < 4; ++k) {
-      const CellId n = d.neighbour(c, k);
-      if (!d.solid(n) || n < c) continue;
-      const Facet t = d.facet(c, k);
-      const auto v = d.facet_vertices(t);
-      for (int i = 0; i < 3; ++i) {
-        const Index a = v[i], b = v[(i + 1) % 3];
-        if (!d.volumetric(d.edge_of(t.cell, a, b))) continue;
-        out.push_back({t, a, b});
-        out.push_back({t, b, a});
-      }
-    }
-  }
+  d.for_each_solid_facet([&](const Facet& t) { d.for_each_half_edge(t, [&](const HalfEdge& h) { out.push_back(h); }); });
   return out;
 }
 

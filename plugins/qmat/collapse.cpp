@@ -39,8 +39,7 @@ class Simplifier {
     InitialQuadrics q = initial_quadrics(mesh_, options_);
     slab_ = std::move(q.slab);
     add_ = std::move(q.add);
-    has_add_.resize(add_.size());
-    for (std::size_t v = 0; v < add_.size(); ++v) has_add_[v] = !add_[v].is_zero();
+    add_of_ = std::move(q.add_of);
     invalid_faces_ = q.invalid_faces;
     // Parity with the authors' connection program: the queue is costed before the marking.
     if (options_.stale_saved_costs) queue_all_edges();
@@ -61,6 +60,9 @@ class Simplifier {
   bool contractible(Index i, Index j) const;
   bool guard_refuses(Index i, Index j) const;
   bool link_condition(Index i, Index j) const;
+  bool has_add(Index v) const { return add_of_[v] != InitialQuadrics::kNoAdd; }
+  SlabQuadric with_add_terms(SlabQuadric q, Index i, Index j) const;
+  void merge_add_terms(Index keep, Index gone);
   void collapse(const Entry& e);
   void queue_all_edges();
   void queue_edges_of(Index v);
@@ -68,8 +70,9 @@ class Simplifier {
   QmatOptions options_;
   double unit_;
   CollapseMesh mesh_;
-  std::vector<SlabQuadric> slab_, add_;
-  std::vector<char> has_add_;  // add_[v] has a nonzero entry
+  std::vector<PackedQuadric> slab_;
+  std::vector<SlabQuadric> add_;  // the add terms of the vertices that have some
+  std::vector<Index> add_of_;     // per vertex: its add terms in add_, or kNoAdd
   std::vector<char> saved_;
   std::vector<std::uint32_t> stamps_;
   std::vector<std::vector<Index>> generators_;
@@ -97,17 +100,31 @@ Vec4 Simplifier::cheapest(Index i, Index j, const SlabQuadric& q, FlipTest* flip
   return candidates[order[0]];
 }
 
+/// q + add_i + add_j. A vertex without add terms has zero ones, and x + (+0) = x bit for bit
+/// (quadrics are sums started from +0, so no entry is −0): its term is left out.
+SlabQuadric Simplifier::with_add_terms(SlabQuadric q, Index i, Index j) const {
+  for (Index v : {i, j})
+    if (has_add(v)) q += add_[add_of_[v]];
+  return q;
+}
+
+/// add_keep += add_gone; onto a vertex without add terms (zero ones) that is add_gone itself.
+void Simplifier::merge_add_terms(Index keep, Index gone) {
+  if (!has_add(gone)) return;
+  if (has_add(keep)) add_[add_of_[keep]] += add_[add_of_[gone]];
+  else add_of_[keep] = add_of_[gone];
+}
+
 /// §1.4: the minimiser of Q_e (+ add terms), or the best of the endpoints and their mean. The
-/// face count matters only when Q_e is singular. Without add terms Q_e + add is Q_e bit for bit
-/// (quadrics are sums started from +0, so no entry is −0, and x + (+0) = x), so neither the sum
-/// nor the determinant is computed twice.
+/// face count matters only when Q_e is singular. Without add terms Q_e + add is Q_e bit for bit,
+/// so neither the sum nor the determinant is computed twice.
 Vec4 Simplifier::optimal_sphere(Index i, Index j, FlipTest& flips, double& error) const {
-  const SlabQuadric qe = slab_[i] + slab_[j];
+  const SlabQuadric qe = slab_[i].plus(slab_[j]);
   const bool invertible = qe.invertible(kSingular);
   FlipTest* avoid = options_.flip_test ? &flips : nullptr;
   if (!invertible && mesh_.face_count(i, j) != 0) return cheapest(i, j, qe, avoid, error);
-  const bool with_add = has_add_[i] || has_add_[j];
-  const SlabQuadric qa = with_add ? qe + add_[i] + add_[j] : qe;
+  const bool with_add = has_add(i) || has_add(j);
+  const SlabQuadric qa = with_add ? with_add_terms(qe, i, j) : qe;
   const bool qa_invertible = with_add ? qa.invertible(kSingular) : invertible;
   const std::optional<Vec4> m = qa_invertible ? qa.solution() : std::nullopt;
   const Vec4 sphere = m && m->w() > 0 ? *m : Vec4(0.5 * (mesh_.spheres[i] + mesh_.spheres[j]));
@@ -124,7 +141,7 @@ std::optional<Entry> Simplifier::evaluate(Index i, Index j, FlipTest& flips) con
   double error = 0;
   if (saved_[i] || saved_[j]) {
     e.sphere = mesh_.spheres[saved_[i] ? i : j];  // collapse onto the saved sphere
-    error = (slab_[i] + slab_[j])(e.sphere);
+    error = slab_[i].plus(slab_[j])(e.sphere);
   } else {
     e.sphere = optimal_sphere(i, j, flips, error);
   }
@@ -194,8 +211,7 @@ void Simplifier::collapse(const Entry& e) {
   mesh_.spheres[keep] = e.sphere;
   flip_test_.forget();
   slab_[keep] += slab_[gone];
-  add_[keep] += add_[gone];
-  has_add_[keep] = has_add_[keep] || has_add_[gone];
+  merge_add_terms(keep, gone);
   saved_[keep] = saved_[keep] || saved_[gone];
   if (!generators_.empty()) {
     generators_[keep].insert(generators_[keep].end(), generators_[gone].begin(), generators_[gone].end());

@@ -33,10 +33,14 @@ struct QmatOptions {
   bool parallel = true;             ///< cost the first queue in parallel (same result either way)
 };
 
-/// Quadrics before any collapse: the slab terms Q_v and the boundary/cone "add" terms.
+/// Quadrics before any collapse: the slab terms Q_v and the boundary/cone "add" terms, the
+/// latter only for the vertices that have some (a zero quadric adds nothing, bit for bit).
 struct InitialQuadrics {
-  std::vector<SlabQuadric> slab, add;
-  std::size_t invalid_faces = 0;  ///< faces without slab planes (close centres, no tangent plane)
+  static constexpr Index kNoAdd = static_cast<Index>(-1);
+  std::vector<PackedQuadric> slab;  ///< per vertex
+  std::vector<SlabQuadric> add;     ///< the nonzero add terms, in vertex order
+  std::vector<Index> add_of;        ///< per vertex: its entry in `add`, or kNoAdd
+  std::size_t invalid_faces = 0;    ///< faces without slab planes (close centres, no tangent plane)
 };
 InitialQuadrics initial_quadrics(const CollapseMesh& mesh, const QmatOptions& options);
 

@@ -1,6 +1,8 @@
 #include "slab_quadric.hpp"
 
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 #include <utility>
 
 namespace medax::qmat {
@@ -13,6 +15,37 @@ SlabQuadric SlabQuadric::tangent_plane(const Vec3& n, const Vec4& at, double wei
   q.b = (2 * weight * offset) * nt;
   q.c = weight * offset * offset;
   return q;
+}
+
+PackedQuadric PackedQuadric::pack(const SlabQuadric& q) {
+  PackedQuadric p;
+  int k = 0;
+  for (int r = 0; r < 4; ++r)
+    for (int c = r; c < 4; ++c) {
+      if (std::memcmp(&q.A(r, c), &q.A(c, r), sizeof(double)) != 0)
+        throw std::logic_error("qmat: a vertex quadric is not exactly symmetric");
+      p.upper[k++] = q.A(r, c);
+    }
+  for (int r = 0; r < 4; ++r) p.b[r] = q.b[r];
+  p.c = q.c;
+  return p;
+}
+
+SlabQuadric PackedQuadric::plus(const PackedQuadric& o) const {
+  SlabQuadric q;
+  int k = 0;
+  for (int r = 0; r < 4; ++r)
+    for (int c = r; c < 4; ++c, ++k) q.A(r, c) = q.A(c, r) = upper[k] + o.upper[k];
+  for (int r = 0; r < 4; ++r) q.b[r] = b[r] + o.b[r];
+  q.c = c + o.c;
+  return q;
+}
+
+PackedQuadric& PackedQuadric::operator+=(const PackedQuadric& o) {
+  for (int k = 0; k < 10; ++k) upper[k] += o.upper[k];
+  for (int r = 0; r < 4; ++r) b[r] += o.b[r];
+  c += o.c;
+  return *this;
 }
 
 namespace {

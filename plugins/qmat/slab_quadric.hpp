@@ -51,6 +51,23 @@ struct SlabQuadric {
   }
 };
 
+/// A slab quadric whose A is symmetric bit for bit, stored as the upper triangle of A, b and c:
+/// 128 bytes (two cache lines) instead of 176, for the vertex quadrics the collapse loop reads
+/// at random. Every slab plane has weight 1, so A's entries (2ñᵣ)·ñ꜀ and (2ñ꜀)·ñᵣ are the same
+/// rounded product (doubling is exact), and sums of symmetric matrices stay symmetric; unpacking
+/// gives back the very same bits.
+struct alignas(64) PackedQuadric {
+  std::array<double, 10> upper{};  ///< A(r, c) for r ≤ c, row by row
+  std::array<double, 4> b{};
+  double c = 0;
+
+  /// Packs q; throws std::logic_error when q.A is not exactly symmetric.
+  static PackedQuadric pack(const SlabQuadric& q);
+  /// The full quadric of this + o: the same bits as adding the full quadrics.
+  SlabQuadric plus(const PackedQuadric& o) const;
+  PackedQuadric& operator+=(const PackedQuadric& o);
+};
+
 /// x with A x = b by partial-pivot LU, bit for bit what Eigen's A.partialPivLu().solve(b)
 /// gives (Eigen 3.4, no FMA), at a fraction of its cost: the collapse solves one per edge costed.
 Vec4 solve_partial_pivot(const Mat4& A, Vec4 b);

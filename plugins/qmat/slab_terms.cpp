@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace medax::qmat {
 
@@ -107,13 +108,22 @@ InitialQuadrics initial_quadrics(const CollapseMesh& mesh, const QmatOptions& op
   });
   q.invalid_faces = static_cast<std::size_t>(std::count(normals.begin(), normals.end(), std::nullopt));
   q.slab.resize(mesh.size());
-  q.add.resize(mesh.size());
-  services::for_blocks(mesh.size(), kBlock, options.parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+  q.add_of.assign(mesh.size(), InitialQuadrics::kNoAdd);
+  std::vector<std::vector<std::pair<Index, SlabQuadric>>> adds(services::block_count(mesh.size(), kBlock));
+  services::for_blocks(mesh.size(), kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
     for (auto v = static_cast<Index>(begin); v < end; ++v) {
-      add_slab_terms(mesh, normals, v, q.slab[v]);
-      add_edge_terms(mesh, options, v, q.add[v]);
+      SlabQuadric slab, add;
+      add_slab_terms(mesh, normals, v, slab);
+      q.slab[v] = PackedQuadric::pack(slab);
+      add_edge_terms(mesh, options, v, add);
+      if (!add.is_zero()) adds[b].emplace_back(v, add);
     }
   });
+  for (const auto& block : adds)  // in vertex order
+    for (const auto& [v, add] : block) {
+      q.add_of[v] = static_cast<Index>(q.add.size());
+      q.add.push_back(add);
+    }
   return q;
 }
 

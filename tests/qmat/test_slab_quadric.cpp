@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <random>
+#include <stdexcept>
 
 using namespace medax;
 using namespace medax::qmat;
@@ -53,13 +54,15 @@ TEST_CASE("vertex quadrics: Q_v >= 0 and Q_v(m_v) = 0 at initialisation on real 
     std::size_t with_planes = 0;
     for (Index v = 0; v < mesh.size(); ++v) {
       const Vec4& m = mesh.spheres[v];
-      CHECK(std::abs(q.slab[v](m)) <= 1e-12);
+      const SlabQuadric slab = q.slab[v].plus(PackedQuadric{});
+      CHECK(std::abs(slab(m)) <= 1e-12);
       const Vec4 s = m + Vec4(step(rng), step(rng), step(rng), step(rng));
-      CHECK(q.slab[v](s) >= -1e-14);
-      CHECK(q.add[v](m) == Approx(0).margin(1e-12));  // add terms are anchored at m_v as well
-      if (q.slab[v].A.norm() > 0) {  // a vertex with slab planes: positive off its sphere
+      CHECK(slab(s) >= -1e-14);
+      if (q.add_of[v] != InitialQuadrics::kNoAdd)  // add terms are anchored at m_v as well
+        CHECK(q.add[q.add_of[v]](m) == Approx(0).margin(1e-12));
+      if (slab.A.norm() > 0) {  // a vertex with slab planes: positive off its sphere
         ++with_planes;
-        CHECK(q.slab[v](s) > 0);
+        CHECK(slab(s) > 0);
       }
     }
     CHECK(with_planes + q.invalid_faces > 0);
@@ -82,8 +85,8 @@ TEST_CASE("a flat equal-radius sheet gives a singular edge quadric", "[qmat][qua
   const InitialQuadrics q = initial_quadrics(mesh, {});
   CHECK(q.invalid_faces == 0);
   // Every plane is z = ±(… ) with n = ±e_z: A_e has rank ≤ 2, det 0.
-  CHECK(std::abs((q.slab[4] + q.slab[5]).A.determinant()) <= 1e-12);
-  CHECK(!(q.slab[4] + q.slab[5]).minimiser(1e-12));
+  CHECK(std::abs(q.slab[4].plus(q.slab[5]).A.determinant()) <= 1e-12);
+  CHECK(!q.slab[4].plus(q.slab[5]).minimiser(1e-12));
 }
 
 TEST_CASE("the 4x4 partial-pivot solve equals Eigen's PartialPivLU bit for bit", "[qmat][quadric]") {
@@ -107,4 +110,32 @@ TEST_CASE("the 4x4 partial-pivot solve equals Eigen's PartialPivLU bit for bit",
     A.col(0).head<2>().setZero();
     check(A, b);
   }
+}
+
+TEST_CASE("packed vertex quadrics: unit-weight plane sums are symmetric bit for bit, and packed sums "
+          "are the full sums' bits", "[qmat][quadric]") {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto plane_sum = [&](int planes) {
+    SlabQuadric q;
+    for (int p = 0; p < planes; ++p)
+      q += SlabQuadric::tangent_plane(Vec3(u(rng), u(rng), u(rng)).normalized(), Vec4(u(rng), u(rng), u(rng), 0.7));
+    return q;
+  };
+  auto same_bits = [](const SlabQuadric& x, const SlabQuadric& y) {
+    return std::memcmp(x.A.data(), y.A.data(), sizeof(double) * 16) == 0 &&
+           std::memcmp(x.b.data(), y.b.data(), sizeof(double) * 4) == 0 && std::memcmp(&x.c, &y.c, sizeof(double)) == 0;
+  };
+  for (int n = 0; n < 500; ++n) {
+    const SlabQuadric x = plane_sum(1 + n % 7), y = plane_sum(1 + n % 3);
+    PackedQuadric px = PackedQuadric::pack(x);
+    const PackedQuadric py = PackedQuadric::pack(y);
+    CHECK(same_bits(px.plus(py), x + y));
+    CHECK(same_bits(px.plus(PackedQuadric{}), x));
+    px += py;
+    CHECK(same_bits(px.plus(PackedQuadric{}), x + y));
+  }
+  SlabQuadric skew;
+  skew.A(0, 1) = 1;  // A(1, 0) stays 0
+  CHECK_THROWS_AS(PackedQuadric::pack(skew), std::logic_error);
 }

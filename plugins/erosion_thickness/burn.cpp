@@ -195,73 +195,114 @@ class Exposure {
   std::vector<Index> unburned_, exposed_;
 };
 
+/// The fire of one burn (§3): node and sector arrival times, what has burned, the queue of nodes
+/// by arrival time, and the result being filled.
+class Fire {
+ public:
+  explicit Fire(const BurnGraph& g)
+      : g_(g),
+        node_time_(g.num_nodes(), kInf),
+        sector_time_(g.num_sectors(), kInf),
+        node_burned_(g.num_nodes(), 0),
+        sector_burned_(g.num_sectors(), 0),
+        prime_sector_(g.num_nodes(), kNone),
+        queue_(node_time_),
+        exposure_(g) {
+    r_.prime_node.assign(g.num_sectors(), kNone);
+    r_.prime_tri.assign(g.num_sectors(), kNone);
+    r_.burn_order.reserve(g.num_nodes());
+  }
+
+  /// Boundary nodes catch fire at their radius.
+  void ignite_boundary() {
+    for (Index n = 0; n < g_.num_nodes(); ++n)
+      if (g_.boundary[n]) {
+        node_time_[n] = g_.radius[n];
+        queue_.update(n);
+      }
+  }
+
+  /// Pops the earliest node; false when nothing reachable is left (only closed surfaces remain).
+  bool step() {
+    if (queue_.empty()) return false;
+    const Index v = queue_.top();
+    if (node_time_[v] == kInf) return false;
+    queue_.pop();
+    ++r_.pops;
+    const double time = node_time_[v];
+    if (prime_sector_[v] != kNone) sector_burned_[g_.sector_begin[v] + prime_sector_[v]] = 1;
+    const int left = exposure_.expose(v, sector_burned_, [&](Index s) {
+      sector_time_[s] = time;
+      r_.prime_node[s] = kNone;
+      r_.prime_tri[s] = kNone;
+    });
+    if (left == 0)
+      burn_node(v, time);
+    else
+      wait_on_earliest_sector(v);
+    return true;
+  }
+
+  std::size_t pops() const { return r_.pops; }
+
+  BurnResult result() {
+    r_.bt.resize(g_.num_nodes());
+    for (std::size_t n = 0; n < r_.bt.size(); ++n) r_.bt[n] = node_burned_[n] ? node_time_[n] : kInf;
+    return std::move(r_);
+  }
+
+ private:
+  /// Every sector of `v` has burned: `v` burns and the fire moves on along its arcs.
+  void burn_node(Index v, double time) {
+    node_burned_[v] = 1;
+    r_.burn_order.push_back(v);
+    const Vec3 pv = g_.pos[v];
+    for_each_arc(g_, v, [&](Index u, Index t) {
+      if (node_burned_[u]) return;
+      const Index s0 = g_.sector_begin[u];
+      const Index ts = g_.sector_begin[u + 1] - s0 == 1 ? s0 : s0 + g_.local_sector(u, t);  // most nodes: one sector
+      if (sector_burned_[ts]) return;
+      ++r_.relaxations;
+      const double h = time + (g_.pos[u] - pv).norm();
+      if (h >= sector_time_[ts]) return;
+      sector_time_[ts] = h;
+      r_.prime_node[ts] = v;
+      r_.prime_tri[ts] = t;
+      if (h < node_time_[u]) {
+        node_time_[u] = h;
+        prime_sector_[u] = ts - s0;
+        queue_.update(u);
+      }
+    });
+  }
+
+  /// Some sector of `v` is still unburned: `v` waits for the earliest of them.
+  void wait_on_earliest_sector(Index v) {
+    Index best = kNone;
+    for (Index s = g_.sector_begin[v]; s < g_.sector_begin[v + 1]; ++s)
+      if (!sector_burned_[s] && (best == kNone || sector_time_[s] < sector_time_[best])) best = s;
+    prime_sector_[v] = best - g_.sector_begin[v];
+    node_time_[v] = sector_time_[best];
+    if (node_time_[v] < kInf) queue_.update(v);
+  }
+
+  const BurnGraph& g_;
+  BurnResult r_;
+  std::vector<double> node_time_, sector_time_;
+  std::vector<char> node_burned_, sector_burned_;
+  std::vector<Index> prime_sector_;
+  NodeHeap queue_;
+  Exposure exposure_;
+};
+
 }  // namespace
 
 BurnResult burn(const BurnGraph& g, const std::function<void()>& cancel) {
-  const std::size_t N = g.num_nodes(), S = g.num_sectors();
-  BurnResult r;
-  std::vector<double> node_time(N, kInf), sector_time(S, kInf);
-  std::vector<char> node_burned(N, 0), sector_burned(S, 0);
-  std::vector<Index> prime_sector(N, kNone);
-  r.prime_node.assign(S, kNone);
-  r.prime_tri.assign(S, kNone);
-  r.burn_order.reserve(N);
-
-  NodeHeap queue(node_time);
-  for (Index n = 0; n < N; ++n)
-    if (g.boundary[n]) {
-      node_time[n] = g.radius[n];
-      queue.update(n);
-    }
-
-  Exposure exposure(g);
-  while (!queue.empty()) {
-    const Index v = queue.top();
-    if (node_time[v] == kInf) break;  // only closed surfaces remain
-    queue.pop();
-    ++r.pops;
-    if (cancel && (r.pops & 0xffff) == 0) cancel();
-    const double time = node_time[v];
-    if (prime_sector[v] != kNone) sector_burned[g.sector_begin[v] + prime_sector[v]] = 1;
-    const int left = exposure.expose(v, sector_burned, [&](Index s) {
-      sector_time[s] = time;
-      r.prime_node[s] = kNone;
-      r.prime_tri[s] = kNone;
-    });
-    if (left == 0) {
-      node_burned[v] = 1;
-      r.burn_order.push_back(v);
-      const Vec3 pv = g.pos[v];
-      for_each_arc(g, v, [&](Index u, Index t) {
-        if (node_burned[u]) return;
-        const Index s0 = g.sector_begin[u];
-        const Index ts = g.sector_begin[u + 1] - s0 == 1 ? s0 : s0 + g.local_sector(u, t);  // most nodes: one sector
-        if (sector_burned[ts]) return;
-        ++r.relaxations;
-        const double h = time + (g.pos[u] - pv).norm();
-        if (h < sector_time[ts]) {
-          sector_time[ts] = h;
-          r.prime_node[ts] = v;
-          r.prime_tri[ts] = t;
-          if (h < node_time[u]) {
-            node_time[u] = h;
-            prime_sector[u] = ts - g.sector_begin[u];
-            queue.update(u);
-          }
-        }
-      });
-    } else {
-      Index best = kNone;
-      for (Index s = g.sector_begin[v]; s < g.sector_begin[v + 1]; ++s)
-        if (!sector_burned[s] && (best == kNone || sector_time[s] < sector_time[best])) best = s;
-      prime_sector[v] = best - g.sector_begin[v];
-      node_time[v] = sector_time[best];
-      if (node_time[v] < kInf) queue.update(v);
-    }
-  }
-  r.bt.resize(N);
-  for (std::size_t n = 0; n < N; ++n) r.bt[n] = node_burned[n] ? node_time[n] : kInf;
-  return r;
+  Fire fire(g);
+  fire.ignite_boundary();
+  while (fire.step())
+    if (cancel && (fire.pops() & 0xffff) == 0) cancel();
+  return fire.result();
 }
 
 std::vector<double> erosion_thickness(const BurnGraph& g, const BurnResult& r) {

@@ -10,44 +10,75 @@ namespace medax::et {
 
 namespace {
 constexpr double kInf1 = std::numeric_limits<double>::infinity();
+
+/// Each vertex's incident (neighbour, edge) pairs, as a CSR table.
+struct Adjacency {
+  std::vector<std::size_t> begin;
+  std::vector<std::pair<Index, Index>> arcs;
+  std::size_t degree(std::size_t v) const { return begin[v + 1] - begin[v]; }
+};
+
+Adjacency adjacency(const Graph1D& graph) {
+  const std::size_t nv = graph.points.size();
+  Adjacency a;
+  a.begin.assign(nv + 1, 0);
+  for (const Segment& e : graph.edges) ++a.begin[e[0] + 1], ++a.begin[e[1] + 1];
+  for (std::size_t v = 0; v < nv; ++v) a.begin[v + 1] += a.begin[v];
+  a.arcs.resize(a.begin[nv]);
+  std::vector<std::size_t> fill(a.begin.begin(), a.begin.end() - 1);
+  for (std::size_t i = 0; i < graph.edges.size(); ++i) {
+    const Segment& e = graph.edges[i];
+    a.arcs[fill[e[0]]++] = {e[1], static_cast<Index>(i)};
+    a.arcs[fill[e[1]]++] = {e[0], static_cast<Index>(i)};
+  }
+  return a;
 }
+
+/// Arrival times of the fire through distinct edges, sorted, in a CSR slot per vertex (at most
+/// one arrival per incident edge), and the burn time they give each vertex.
+class Arrivals {
+ public:
+  Arrivals(const Graph1D& graph, const Adjacency& adj)
+      : graph_(graph), adj_(adj), store_(adj.arcs.size()), count_(graph.points.size(), 0) {}
+
+  void add(std::size_t v, double t) {
+    double* a = store_.data() + adj_.begin[v];
+    std::size_t n = count_[v]++;
+    while (n > 0 && a[n - 1] > t) a[n] = a[n - 1], --n;
+    a[n] = t;
+  }
+
+  /// When `v` burns given the arrivals so far: a leaf at its ignition time, any vertex once all
+  /// but one of its edges have brought the fire; never when anchored.
+  double burn_time(std::size_t v) const {
+    if (!graph_.anchored.empty() && graph_.anchored[v]) return kInf1;
+    const std::size_t d = adj_.degree(v);
+    double k = d <= 1 ? graph_.ignite[v] : kInf1;
+    const double* a = store_.data() + adj_.begin[v];
+    const std::size_t n = count_[v];
+    if (d >= 1 && n >= 1 && n >= d - 1) k = std::min(k, d == 1 ? a[0] : a[d - 2]);
+    return k;
+  }
+
+ private:
+  const Graph1D& graph_;
+  const Adjacency& adj_;
+  std::vector<double> store_;
+  std::vector<std::uint32_t> count_;
+};
+}  // namespace
 
 std::vector<double> burn_1d(const Graph1D& graph) {
   const std::size_t nv = graph.points.size();
   if (graph.ignite.size() != nv) throw std::invalid_argument("burn_1d: one ignition time per vertex");
-  const bool has_anchor = !graph.anchored.empty();
-  // Adjacency (CSR) with edge ids.
-  std::vector<std::size_t> begin(nv + 1, 0);
-  for (const Segment& e : graph.edges) ++begin[e[0] + 1], ++begin[e[1] + 1];
-  for (std::size_t v = 0; v < nv; ++v) begin[v + 1] += begin[v];
-  std::vector<std::pair<Index, Index>> adj(begin[nv]);  // (neighbour, edge)
-  std::vector<std::size_t> fill(begin.begin(), begin.end() - 1);
-  for (std::size_t i = 0; i < graph.edges.size(); ++i) {
-    const Segment& e = graph.edges[i];
-    adj[fill[e[0]]++] = {e[1], static_cast<Index>(i)};
-    adj[fill[e[1]]++] = {e[0], static_cast<Index>(i)};
-  }
-
-  // Arrival times of the fire through distinct edges, sorted, in a CSR slot per vertex (at most
-  // one arrival per incident edge).
-  std::vector<double> arrival_store(begin[nv]);
-  std::vector<std::uint32_t> arrival_count(nv, 0);
+  const Adjacency adj = adjacency(graph);
+  Arrivals arrivals(graph, adj);
   std::vector<double> key(nv, kInf1), bt(nv, kInf1);
   std::vector<char> burned(nv, 0), edge_burned(graph.edges.size(), 0);
   using Entry = std::pair<double, Index>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  auto degree = [&](std::size_t v) { return begin[v + 1] - begin[v]; };
-  auto candidate = [&](std::size_t v) {
-    if (has_anchor && graph.anchored[v]) return kInf1;
-    const std::size_t d = degree(v);
-    double k = d <= 1 ? graph.ignite[v] : kInf1;
-    const double* a = arrival_store.data() + begin[v];
-    const std::size_t n = arrival_count[v];
-    if (d >= 1 && n >= 1 && n >= d - 1) k = std::min(k, d == 1 ? a[0] : a[d - 2]);
-    return k;
-  };
   for (std::size_t v = 0; v < nv; ++v) {
-    key[v] = candidate(v);
+    key[v] = arrivals.burn_time(v);
     if (key[v] < kInf1) queue.push({key[v], static_cast<Index>(v)});
   }
   while (!queue.empty()) {
@@ -56,16 +87,12 @@ std::vector<double> burn_1d(const Graph1D& graph) {
     if (burned[v] || t != key[v]) continue;
     burned[v] = 1;
     bt[v] = t;
-    for (std::size_t i = begin[v]; i < begin[v + 1]; ++i) {
-      const auto [u, e] = adj[i];
+    for (std::size_t i = adj.begin[v]; i < adj.begin[v + 1]; ++i) {
+      const auto [u, e] = adj.arcs[i];
       if (edge_burned[e] || burned[u]) continue;
       edge_burned[e] = 1;
-      const double len = (graph.points[u] - graph.points[v]).norm();
-      double* a = arrival_store.data() + begin[u];
-      std::size_t n = arrival_count[u]++;
-      while (n > 0 && a[n - 1] > t + len) a[n] = a[n - 1], --n;
-      a[n] = t + len;
-      const double k = candidate(u);
+      arrivals.add(u, t + (graph.points[u] - graph.points[v]).norm());
+      const double k = arrivals.burn_time(u);
       if (k < key[u]) {
         key[u] = k;
         queue.push({k, u});

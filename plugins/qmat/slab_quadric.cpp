@@ -31,16 +31,6 @@ PackedQuadric PackedQuadric::pack(const SlabQuadric& q) {
   return p;
 }
 
-SlabQuadric PackedQuadric::plus(const PackedQuadric& o) const {
-  SlabQuadric q;
-  int k = 0;
-  for (int r = 0; r < 4; ++r)
-    for (int c = r; c < 4; ++c, ++k) q.A(r, c) = q.A(c, r) = upper[k] + o.upper[k];
-  for (int r = 0; r < 4; ++r) q.b[r] = b[r] + o.b[r];
-  q.c = c + o.c;
-  return q;
-}
-
 PackedQuadric& PackedQuadric::operator+=(const PackedQuadric& o) {
   for (int k = 0; k < 10; ++k) upper[k] += o.upper[k];
   for (int r = 0; r < 4; ++r) b[r] += o.b[r];

@@ -63,10 +63,20 @@ struct alignas(64) PackedQuadric {
 
   /// Packs q; throws std::logic_error when q.A is not exactly symmetric.
   static PackedQuadric pack(const SlabQuadric& q);
-  /// The full quadric of this + o: the same bits as adding the full quadrics.
+  /// The full quadric of this + o: the same bits as adding the full quadrics (inline: the
+  /// collapse calls it once per edge costed).
   SlabQuadric plus(const PackedQuadric& o) const;
   PackedQuadric& operator+=(const PackedQuadric& o);
 };
+
+inline SlabQuadric PackedQuadric::plus(const PackedQuadric& o) const {
+  constexpr int kRow[10] = {0, 0, 0, 0, 1, 1, 1, 2, 2, 3}, kCol[10] = {0, 1, 2, 3, 1, 2, 3, 2, 3, 3};
+  SlabQuadric q;
+  for (int k = 0; k < 10; ++k) q.A(kRow[k], kCol[k]) = q.A(kCol[k], kRow[k]) = upper[k] + o.upper[k];
+  for (int r = 0; r < 4; ++r) q.b[r] = b[r] + o.b[r];
+  q.c = c + o.c;
+  return q;
+}
 
 /// x with A x = b by partial-pivot LU, bit for bit what Eigen's A.partialPivLu().solve(b)
 /// gives (Eigen 3.4, no FMA), at a fraction of its cost: the collapse solves one per edge costed.

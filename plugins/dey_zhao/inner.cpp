@@ -1,11 +1,9 @@
 #include "inner.hpp"
 
+#include "segment_mesh.hpp"
+
 #include <medax/services/ray_parity.hpp>
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -120,27 +118,10 @@ bool label_cells_by_surface(const DelaunayTetrahedralization& dt, const SurfaceM
 // ---------------------------------------------------------------------------------------------
 // (b) A general closed mesh: midpoint inside, shrunk segment free of the mesh.
 
-namespace {
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<K::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-}  // namespace
-
 struct MeshEdgeSide::Impl {
   services::RayParityInside parity;
-  Triangles triangles;
-  Tree tree;
-  explicit Impl(const SurfaceMesh& mesh) : parity(mesh) {
-    triangles.reserve(mesh.faces.size());
-    for (const Tri& f : mesh.faces) {
-      const K::Point_3 a = point(mesh.vertices[f[0]]), b = point(mesh.vertices[f[1]]), c = point(mesh.vertices[f[2]]);
-      if (!CGAL::collinear(a, b, c)) triangles.emplace_back(a, b, c);
-    }
-    tree.insert(triangles.begin(), triangles.end());
-    tree.build();
-  }
+  SegmentMeshTest segments;
+  explicit Impl(const SurfaceMesh& mesh) : parity(mesh), segments(mesh) {}
 };
 
 MeshEdgeSide::MeshEdgeSide(const SurfaceMesh& mesh) : impl_(std::make_unique<Impl>(mesh)) {}
@@ -159,8 +140,7 @@ std::vector<char> MeshEdgeSide::inner(const std::vector<Vec3>& points, const std
     const Vec3& q = points[edges[i][1]];
     const Vec3 d = q - p;
     constexpr double kShrink = 1.0 / 16;  // a power of two keeps scaling exact
-    const K::Segment_3 s(point(p + kShrink * d), point(q - kShrink * d));
-    if (impl_->tree.do_intersect(s)) out[i] = 0;
+    if (impl_->segments.meets(p + kShrink * d, q - kShrink * d)) out[i] = 0;
   };
   if (parallel) tbb::parallel_for(std::size_t{0}, edges.size(), segment);
   else for (std::size_t i = 0; i < edges.size(); ++i) segment(i);

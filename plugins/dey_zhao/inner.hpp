@@ -21,7 +21,7 @@ bool label_cells_by_surface(const services::DelaunayTetrahedralization& dt, cons
 
 /// (b) A closed mesh: an edge (p, q) is inner when its midpoint is strictly inside (exact ray
 /// parity) and the segment, shrunk by 1/16 of its length at both ends, does not meet the mesh
-/// (CGAL AABB tree, exact predicates).
+/// (SegmentMeshTest: a box hierarchy and exact predicates).
 class MeshEdgeSide {
  public:
   /// Throws std::invalid_argument when the mesh is not closed.

@@ -194,6 +194,9 @@ void Simplifier::queue_all_edges() {
         if (i < j)
           if (auto e = evaluate(i, j, flips)) blocks[b].push_back(*e);
   });
+  std::size_t count = 0;
+  for (const std::vector<Entry>& block : blocks) count += block.size();
+  queue_.reserve(count);
   for (const std::vector<Entry>& block : blocks)
     for (const Entry& e : block) queue_.push_unordered(e);
   queue_.heapify();

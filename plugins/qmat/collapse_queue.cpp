@@ -5,7 +5,7 @@
 namespace medax::qmat {
 
 namespace {
-constexpr std::size_t kArity = 4;  // four 32-byte children span two cache lines
+constexpr std::size_t kArity = 4;  // four 32-byte children: two cache lines
 }
 
 std::uint32_t CollapseQueue::store(const Vec4& sphere) {
@@ -24,24 +24,24 @@ void CollapseQueue::push_unordered(const QueuedCollapse& c) {
 }
 
 void CollapseQueue::push(const QueuedCollapse& c) {
-  if (heap_.size() >= sweep_above_) sweep_stale();
+  if (size() >= sweep_above_) sweep_stale();
   push_unordered(c);
   sift_up(heap_.size() - 1);
 }
 
 QueuedCollapse CollapseQueue::pop() {
-  const Key top = heap_.front();
-  heap_.front() = heap_.back();
+  const Key top = heap_[kRoot];
+  heap_[kRoot] = heap_.back();
   heap_.pop_back();
-  if (!heap_.empty()) sift_down(0);
+  if (!empty()) sift_down(kRoot);
   free_slots_.push_back(top.slot);
   return {top.cost, top.lo, top.hi, top.stamp_lo, top.stamp_hi, spheres_[top.slot]};
 }
 
 void CollapseQueue::sift_up(std::size_t at) {
   const Key moving = heap_[at];
-  while (at > 0) {
-    const std::size_t parent = (at - 1) / kArity;
+  while (at > kRoot) {
+    const std::size_t parent = at / kArity + 2;
     if (!after(heap_[parent], moving)) break;
     heap_[at] = heap_[parent];
     at = parent;
@@ -53,7 +53,7 @@ void CollapseQueue::sift_down(std::size_t at) {
   const Key moving = heap_[at];
   const std::size_t n = heap_.size();
   for (;;) {
-    const std::size_t first = kArity * at + 1;
+    const std::size_t first = kArity * at - 8;
     if (first >= n) break;
     const std::size_t last = std::min(first + kArity, n);
     std::size_t least = first;
@@ -67,17 +67,17 @@ void CollapseQueue::sift_down(std::size_t at) {
 }
 
 void CollapseQueue::heapify() {
-  for (std::size_t at = heap_.size() / kArity + 1; at-- > 0;)
+  for (std::size_t at = heap_.size() / kArity + 3; at-- > kRoot;)
     if (at < heap_.size()) sift_down(at);
-  sweep_above_ = std::max<std::size_t>(heap_.size() + heap_.size() / 4, sweep_above_);
+  sweep_above_ = std::max<std::size_t>(size() + size() / 4, sweep_above_);
 }
 
 void CollapseQueue::sweep_stale() {
-  auto live_end = std::partition(heap_.begin(), heap_.end(), [&](const Key& k) { return !stale(k); });
+  auto live_end = std::partition(heap_.begin() + kRoot, heap_.end(), [&](const Key& k) { return !stale(k); });
   for (auto it = live_end; it != heap_.end(); ++it) free_slots_.push_back(it->slot);
   heap_.erase(live_end, heap_.end());
   heapify();
-  sweep_above_ = std::max<std::size_t>(heap_.size() + heap_.size() / 4, 4096);
+  sweep_above_ = std::max<std::size_t>(size() + size() / 4, 4096);
 }
 
 }  // namespace medax::qmat

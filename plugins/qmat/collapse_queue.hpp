@@ -3,15 +3,17 @@
 // costed when its endpoints had the given stamps; entries whose endpoint changed since (its
 // stamp moved on: the owner bumps a vertex's stamp when it moves or dies) are stale and skipped
 // by the caller. For speed (popping stale entries was a tenth of the work), the
-// heap is 4-ary over 32-byte keys, the optimal spheres live in a slot store beside it, the
-// first entries are heapified at once, and stale entries are swept out whenever the heap has
-// grown by a quarter since the last sweep (most entries go stale before they reach the top).
+// heap is 4-ary over 32-byte keys whose sibling groups fill two whole cache lines (the storage
+// is 128-byte aligned, the root three keys in), the optimal spheres live in a slot store beside
+// it, the first entries are heapified at once, and stale entries are swept out whenever the heap
+// has grown by a quarter since the last sweep (most entries go stale before they reach the top).
 // The order is the total order (cost, lo, hi), so the pops of live entries depend on none of it.
 #include "slab_quadric.hpp"
 
 #include <medax/geometry.hpp>
 
 #include <cstdint>
+#include <new>
 #include <vector>
 
 namespace medax::qmat {
@@ -29,11 +31,16 @@ class CollapseQueue {
   explicit CollapseQueue(const std::vector<std::uint32_t>& stamps) : stamps_(stamps) {}
 
   void push(const QueuedCollapse& c);
+  /// Room for `n` entries (the first ones, pushed unordered, without moving them as they come).
+  void reserve(std::size_t n) {
+    heap_.reserve(kRoot + n);
+    spheres_.reserve(n);
+  }
   /// Adds an entry without ordering the heap; call heapify() before the next pop or push.
   void push_unordered(const QueuedCollapse& c);
   void heapify();
-  bool empty() const { return heap_.empty(); }
-  std::size_t size() const { return heap_.size(); }
+  bool empty() const { return size() == 0; }
+  std::size_t size() const { return heap_.size() - kRoot; }
   /// Removes and returns the least entry by (cost, lo, hi).
   QueuedCollapse pop();
 
@@ -51,13 +58,27 @@ class CollapseQueue {
     return a.hi > b.hi;
   }
   bool stale(const Key& k) const { return stamps_[k.lo] != k.stamp_lo || stamps_[k.hi] != k.stamp_hi; }
+  /// Storage aligned to a sibling group (four keys).
+  template <typename T>
+  struct GroupAligned {
+    using value_type = T;
+    GroupAligned() = default;
+    template <typename U>
+    GroupAligned(const GroupAligned<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(128))); }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(128)); }
+    friend bool operator==(const GroupAligned&, const GroupAligned&) { return true; }
+  };
+  /// The root's position in heap_: the children of position p are then 4p − 8 … 4p − 5, one
+  /// aligned group.
+  static constexpr std::size_t kRoot = 3;
   std::uint32_t store(const Vec4& sphere);
   void sift_up(std::size_t at);
   void sift_down(std::size_t at);
   void sweep_stale();
 
   const std::vector<std::uint32_t>& stamps_;
-  std::vector<Key> heap_;
+  std::vector<Key, GroupAligned<Key>> heap_ = std::vector<Key, GroupAligned<Key>>(kRoot);
   std::vector<Vec4> spheres_;
   std::vector<std::uint32_t> free_slots_;
   std::size_t sweep_above_ = 4096;

@@ -11,16 +11,6 @@ namespace {
 
 bool holds(const Tri& t, Index v) { return t[0] == v || t[1] == v || t[2] == v; }
 
-void insert_sorted(std::vector<Index>& list, Index v) {
-  auto it = std::lower_bound(list.begin(), list.end(), v);
-  if (it == list.end() || *it != v) list.insert(it, v);
-}
-
-void erase_sorted(std::vector<Index>& list, Index v) {
-  auto it = std::lower_bound(list.begin(), list.end(), v);
-  if (it != list.end() && *it == v) list.erase(it);
-}
-
 /// Adds `per_corner` to count[v] for each element holding v.
 template <typename Element>
 void count_per_vertex(std::vector<std::size_t>& count, const std::vector<Element>& elements, std::size_t per_corner) {
@@ -28,16 +18,10 @@ void count_per_vertex(std::vector<std::size_t>& count, const std::vector<Element
     for (Index v : e) count[v] += per_corner;
 }
 
-/// Room for count[v] entries in lists[v] (one allocation per list).
-void reserve(std::vector<std::vector<Index>>& lists, const std::vector<std::size_t>& count) {
-  for (std::size_t v = 0; v < lists.size(); ++v) lists[v].reserve(count[v]);
-}
-
 }  // namespace
 
 CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
-    : alive_(medial.num_vertices(), 1), neighbours_(medial.num_vertices()), vertex_faces_(medial.num_vertices()),
-      live_(medial.num_vertices()) {
+    : alive_(medial.num_vertices(), 1), live_(medial.num_vertices()) {
   spheres.reserve(medial.num_vertices());
   for (std::size_t v = 0; v < medial.num_vertices(); ++v)
     spheres.push_back(sphere4(medial.centres[v] / unit_length, medial.radii[v] / unit_length));
@@ -47,9 +31,9 @@ CollapseMesh::CollapseMesh(const MedialComplex& medial, double unit_length)
 
 /// One slot per input face, in input order, except degenerate faces and repeats of an earlier one.
 void CollapseMesh::add_faces(const MedialComplex& medial) {
-  std::vector<std::size_t> count(vertex_faces_.size(), 0);
+  std::vector<std::size_t> count(medial.num_vertices(), 0);
   count_per_vertex(count, medial.faces, 1);
-  reserve(vertex_faces_, count);
+  vertex_faces_ = ListPool(count);
   for (Index input = 0; input < medial.faces.size(); ++input) {
     const Tri& t = medial.faces[input];
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || has_face(t[0], t[1], t[2])) continue;
@@ -57,31 +41,27 @@ void CollapseMesh::add_faces(const MedialComplex& medial) {
     faces_.push_back(t);
     source_face_.push_back(input);
     face_alive_.push_back(1);
-    for (Index v : t) vertex_faces_[v].push_back(f);
+    for (Index v : t) vertex_faces_.push_back(v, f);
   }
 }
 
 /// Neighbours: the complex's edges and every side of a face slot, sorted and without repeats
 /// (each vertex's list on its own, in parallel).
 void CollapseMesh::add_adjacency(const MedialComplex& medial) {
-  std::vector<std::size_t> count(neighbours_.size(), 0);
+  std::vector<std::size_t> count(medial.num_vertices(), 0);
   count_per_vertex(count, medial.edges, 1);
   count_per_vertex(count, faces_, 2);  // two face sides meet at each corner
-  reserve(neighbours_, count);
+  neighbours_ = ListPool(count);
   auto add = [&](Index a, Index b) {
     if (a == b) return;
-    neighbours_[a].push_back(b);
-    neighbours_[b].push_back(a);
+    neighbours_.push_back(a, b);
+    neighbours_.push_back(b, a);
   };
   for (const Segment& e : medial.edges) add(e[0], e[1]);
   for (const Tri& t : faces_)
     for (int k = 0; k < 3; ++k) add(t[k], t[(k + 1) % 3]);
-  services::for_blocks(neighbours_.size(), 4096, true, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      std::vector<Index>& list = neighbours_[v];
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
+  services::for_blocks(medial.num_vertices(), 4096, true, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) neighbours_.sort_unique(v);
   });
 }
 
@@ -105,8 +85,8 @@ std::size_t CollapseMesh::face_count(Index i, Index j, Index* some) const {
 
 std::vector<Index> CollapseMesh::common_neighbours(Index i, Index j) const {
   std::vector<Index> out;
-  std::set_intersection(neighbours_[i].begin(), neighbours_[i].end(), neighbours_[j].begin(), neighbours_[j].end(),
-                        std::back_inserter(out));
+  const ListPool::View a = neighbours_[i], b = neighbours_[j];
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
   return out;
 }
 
@@ -131,30 +111,30 @@ void CollapseMesh::move_face(Index f, Index from, Index to) {
     return;
   }
   faces_[f] = t;
-  vertex_faces_[to].push_back(f);
+  vertex_faces_.push_back(to, f);
 }
 
+/// (The lists grow as gone's is walked: it is read by position.)
 void CollapseMesh::move_neighbours(Index keep, Index gone) {
-  for (Index n : neighbours_[gone]) {
-    erase_sorted(neighbours_[n], gone);
+  for (std::size_t k = 0; k < neighbours_[gone].size(); ++k) {
+    const Index n = neighbours_[gone][k];
+    neighbours_.erase_sorted(n, gone);
     if (n == keep) continue;
-    insert_sorted(neighbours_[n], keep);
-    insert_sorted(neighbours_[keep], n);
+    neighbours_.insert_sorted(n, keep);
+    neighbours_.insert_sorted(keep, n);
   }
-  neighbours_[gone].clear();
-  neighbours_[gone].shrink_to_fit();
+  neighbours_.clear(gone);
 }
 
 void CollapseMesh::merge(Index keep, Index gone) {
-  for (Index f : vertex_faces_[gone]) {
+  for (std::size_t k = 0; k < vertex_faces_[gone].size(); ++k) {  // by position: keep's list grows
+    const Index f = vertex_faces_[gone][k];
     if (!face_alive_[f]) continue;
     if (holds(faces_[f], keep)) face_alive_[f] = 0;
     else move_face(f, gone, keep);
   }
-  vertex_faces_[gone].clear();
-  vertex_faces_[gone].shrink_to_fit();
-  std::vector<Index>& kept = vertex_faces_[keep];
-  kept.erase(std::remove_if(kept.begin(), kept.end(), [&](Index f) { return !face_alive_[f]; }), kept.end());
+  vertex_faces_.clear(gone);
+  vertex_faces_.erase_if(keep, [&](Index f) { return !face_alive_[f]; });
   move_neighbours(keep, gone);
   alive_[gone] = 0;
   --live_;

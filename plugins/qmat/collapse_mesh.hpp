@@ -2,6 +2,7 @@
 // The mutable medial mesh that Q-MAT collapses: spheres in normalised units, vertex adjacency,
 // faces with their incident-vertex lists, and the merge of one vertex into another (notes §1.6:
 // edges and faces of both ends re-inserted without duplicates, faces holding both ends vanish).
+#include "list_pool.hpp"
 #include "slab_quadric.hpp"
 
 #include <medax/medial_complex.hpp>
@@ -20,16 +21,16 @@ class CollapseMesh {
   bool alive(Index v) const { return alive_[v] != 0; }
   bool face_alive(Index f) const { return face_alive_[f] != 0; }
 
-  /// Neighbours of v (sorted, live).
-  const std::vector<Index>& neighbours(Index v) const { return neighbours_[v]; }
+  /// Neighbours of v (sorted, live); valid until the next merge.
+  ListPool::View neighbours(Index v) const { return neighbours_[v]; }
   /// Calls visit(face) for each live face incident to v (no allocation: the hot loops use it).
   template <typename Visit>
   void for_each_face(Index v, Visit&& visit) const {
     for (Index f : vertex_faces_[v])
       if (face_alive_[f]) visit(f);
   }
-  /// The face slots that held v, live or not (check face_alive).
-  const std::vector<Index>& face_list(Index v) const { return vertex_faces_[v]; }
+  /// The face slots that held v, live or not (check face_alive); valid until the next merge.
+  ListPool::View face_list(Index v) const { return vertex_faces_[v]; }
   bool has_faces(Index v) const;
   /// The number of live faces holding both i and j, and one of them in `some` when there is one.
   std::size_t face_count(Index i, Index j, Index* some = nullptr) const;
@@ -54,7 +55,7 @@ class CollapseMesh {
   void move_neighbours(Index keep, Index gone);
 
   std::vector<char> alive_, face_alive_;
-  std::vector<std::vector<Index>> neighbours_, vertex_faces_;
+  ListPool neighbours_, vertex_faces_;  // per vertex, in one array each
   std::vector<Index> source_face_;
   std::vector<Tri> faces_;  // original orientation, with merged vertices renamed
   std::size_t live_ = 0;

@@ -41,7 +41,7 @@ bool FlipTest::any_flip(Fan& fan, Index other, const Vec3& centre) {
 /// and are left out.
 bool FlipTest::gather_until_flip(Fan& fan, Index other, const Vec3& centre) {
   const Index v = fan.vertex;
-  const std::vector<Index>& faces = mesh_.face_list(v);
+  const ListPool::View faces = mesh_.face_list(v);
   Corner* corners = corners_.data() + fan.first;
   const Vec3 p = centre_of(mesh_.spheres[v]);
   while (fan.next_face < faces.size()) {

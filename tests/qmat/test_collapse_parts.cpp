@@ -1,12 +1,15 @@
 // The collapse loop's parts that exist for speed must not change what it computes: the queue
-// pops live entries in (cost, lo, hi) order whatever its sweeps do, and the gathered fans of
-// the flip test answer as testing each face around the edge directly does.
+// pops live entries in (cost, lo, hi) order whatever its sweeps do, the gathered fans of the
+// flip test answer as testing each face around the edge directly does, and the pooled lists
+// hold what separate vectors would.
 #include "collapse_queue.hpp"
 #include "flip_test.hpp"
+#include "list_pool.hpp"
 #include "qmat_test_inputs.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 #include <set>
 #include <tuple>
@@ -94,4 +97,40 @@ TEST_CASE("the flip test's fans answer as testing each face around the edge dire
   CHECK(tested > 1000);
   CHECK(flips > 10);            // both answers occur
   CHECK(flips < tested - 10);
+}
+
+TEST_CASE("pooled lists hold what separate sorted vectors hold, through growth and moves", "[qmat][collapse]") {
+  const std::vector<std::size_t> room = {0, 1, 3, 2, 5, 0, 4, 1};
+  ListPool pool(room);
+  std::vector<std::vector<Index>> reference(room.size());
+  std::mt19937_64 rng(9);
+  std::uniform_int_distribution<std::size_t> list(0, room.size() - 1);
+  std::uniform_int_distribution<Index> value(0, 30);
+  std::uniform_int_distribution<int> action(0, 9);
+  for (int step = 0; step < 20000; ++step) {
+    const std::size_t v = list(rng);
+    const Index x = value(rng);
+    std::vector<Index>& ref = reference[v];
+    const auto at = std::lower_bound(ref.begin(), ref.end(), x);
+    const int a = action(rng);
+    if (a < 5) {
+      pool.insert_sorted(v, x);
+      if (at == ref.end() || *at != x) ref.insert(at, x);
+    } else if (a < 9) {
+      pool.erase_sorted(v, x);
+      if (at != ref.end() && *at == x) ref.erase(at);
+    } else {
+      pool.erase_if(v, [&](Index y) { return y % 3 == x % 3; });
+      ref.erase(std::remove_if(ref.begin(), ref.end(), [&](Index y) { return y % 3 == x % 3; }), ref.end());
+    }
+    for (std::size_t w = 0; w < room.size(); ++w) {
+      const ListPool::View got = pool[w];
+      REQUIRE(std::vector<Index>(got.begin(), got.end()) == reference[w]);
+    }
+  }
+  pool.clear(5);
+  CHECK(pool[5].size() == 0);
+  for (Index x : {7u, 3u, 7u, 1u, 3u}) pool.push_back(5, x);
+  pool.sort_unique(5);
+  CHECK(std::vector<Index>(pool[5].begin(), pool[5].end()) == std::vector<Index>{1, 3, 7});
 }

@@ -21,24 +21,36 @@ constexpr std::uint32_t kLeafSize = 4;
 
 double max_abs(const Vec3& p) { return p.cwiseAbs().maxCoeff(); }
 
+/// The margin that keeps the slab test conservative for coordinates up to `extent` (below).
+double slab_margin(double extent) { return std::ldexp(extent, -40); }
+
 /// The segment prepared for the slab test against the boxes. Conservative: a box that the
 /// exact segment meets is never rejected. Each computed slab parameter (lo − a)·(1/d) is within
 /// 13u·E/|d| of the exact one (u = 2^-53, E the largest |coordinate| of box and segment), so
-/// widening every box by margin = 2^-40·E > 13u·E keeps the exact meeting parameter inside the
-/// computed interval. An axis along which d is 0 (or 1/d overflows) is tested by its range.
+/// boxes widened by slab_margin(E) = 2^-40·E > 13u·E keep the exact meeting parameter inside the
+/// computed interval. The stored boxes are widened by slab_margin(mesh extent); a segment
+/// reaching farther out widens them again by its own margin, in the general path, which also
+/// tests an axis along which d is 0 (or 1/d overflows) by its range.
 struct SegmentSlabs {
   std::array<double, 3> a, inv, lo, hi;
-  bool by_range = false;  ///< some axis is tested by its range
-  double margin;
+  bool general = false;  ///< an axis tested by its range, or a margin to add
+  double margin = 0;     ///< added to the stored boxes' widening (general path)
+#if defined(__SSE2__)
+  __m128d a2[3], inv2[3];  ///< a and inv in both lanes
+#endif
 
-  SegmentSlabs(const Vec3& from, const Vec3& to, double mesh_extent)
-      : margin(std::ldexp(std::max({mesh_extent, max_abs(from), max_abs(to)}), -40)) {
+  SegmentSlabs(const Vec3& from, const Vec3& to, double mesh_extent) {
+    const double extent = std::max(max_abs(from), max_abs(to));
+    if (extent > mesh_extent) general = true, margin = slab_margin(extent);
     for (int i = 0; i < 3; ++i) {
       a[i] = from[i];
       inv[i] = 1.0 / (to[i] - from[i]);
-      by_range = by_range || !std::isfinite(inv[i]);
+      general = general || !std::isfinite(inv[i]);
       lo[i] = std::min(from[i], to[i]);
       hi[i] = std::max(from[i], to[i]);
+#if defined(__SSE2__)
+      a2[i] = _mm_set1_pd(a[i]), inv2[i] = _mm_set1_pd(inv[i]);
+#endif
     }
   }
 
@@ -60,18 +72,15 @@ struct SegmentSlabs {
   }
 
   /// Bit k: the segment may meet the box of the node's child k. Both boxes in one pass of
-  /// two-lane arithmetic (each lane the operations of may_meet) unless an axis is tested by its
-  /// range.
+  /// two-lane arithmetic (each lane the operations of may_meet with margin 0) unless general.
   template <typename Node>
   int may_meet_children(const Node& n) const {
 #if defined(__SSE2__)
-    if (!by_range) {
+    if (!general) {
       __m128d t0 = _mm_setzero_pd(), t1 = _mm_set1_pd(1.0);
-      const __m128d m = _mm_set1_pd(margin);
       for (int i = 0; i < 3; ++i) {
-        const __m128d ai = _mm_set1_pd(a[i]), inv_i = _mm_set1_pd(inv[i]);
-        const __m128d u = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(_mm_loadu_pd(n.lo[i]), m), ai), inv_i);
-        const __m128d v = _mm_mul_pd(_mm_sub_pd(_mm_add_pd(_mm_loadu_pd(n.hi[i]), m), ai), inv_i);
+        const __m128d u = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.lo[i]), a2[i]), inv2[i]);
+        const __m128d v = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.hi[i]), a2[i]), inv2[i]);
         t0 = _mm_max_pd(t0, _mm_min_pd(u, v));
         t1 = _mm_min_pd(t1, _mm_max_pd(u, v));
       }
@@ -134,7 +143,8 @@ SegmentMeshTest::SegmentMeshTest(const SurfaceMesh& mesh) {
   nodes_.reserve(triangles.size() / 2 + 1);
   Box box;
   top_.child[0] = build(0, static_cast<std::uint32_t>(triangles.size()), order, centroids, triangles, box);
-  for (int i = 0; i < 3; ++i) top_.lo[i][0] = top_.lo[i][1] = box.lo[i], top_.hi[i][0] = top_.hi[i][1] = box.hi[i];
+  top_.child[1] = top_.child[0];
+  set_boxes(top_, {box, box});
   triangles_.reserve(triangles.size());
   for (std::uint32_t i : order) triangles_.push_back(triangles[i]);
   planes_.reserve(triangles_.size());
@@ -169,12 +179,16 @@ SegmentMeshTest::Ref SegmentMeshTest::build(std::uint32_t begin, std::uint32_t e
   Box child_box[2];
   const Ref left = build(begin, mid, order, centroids, triangles, child_box[0]);
   const Ref right = build(mid, end, order, centroids, triangles, child_box[1]);
-  Node& n = nodes_[node];
-  n.child[0] = left, n.child[1] = right;
-  for (int k = 0; k < 2; ++k)
-    for (int i = 0; i < 3; ++i) n.lo[i][k] = child_box[k].lo[i], n.hi[i][k] = child_box[k].hi[i];
+  nodes_[node].child[0] = left, nodes_[node].child[1] = right;
+  set_boxes(nodes_[node], {child_box[0], child_box[1]});
   box = {child_box[0].lo.cwiseMin(child_box[1].lo), child_box[0].hi.cwiseMax(child_box[1].hi)};
   return {node, 0};
+}
+
+void SegmentMeshTest::set_boxes(Node& n, const std::array<Box, 2>& children) const {
+  const double margin = slab_margin(extent_);
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 3; ++i) n.lo[i][k] = children[k].lo[i] - margin, n.hi[i][k] = children[k].hi[i] + margin;
 }
 
 bool SegmentMeshTest::leaf_meets(Ref leaf, const Vec3& a, const Vec3& b) const {

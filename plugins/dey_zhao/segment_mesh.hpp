@@ -27,8 +27,8 @@ class SegmentMeshTest {
   struct Ref {
     std::uint32_t first, count;
   };
-  /// An inner node: its two children's boxes ([axis][child], so that both are tested together)
-  /// and the children.
+  /// An inner node: its two children's boxes ([axis][child], so that both are tested together;
+  /// widened by the slab test's margin) and the children.
   struct Node {
     double lo[3][2], hi[3][2];
     Ref child[2];
@@ -47,6 +47,8 @@ class SegmentMeshTest {
   /// Builds the subtree of the triangles order[begin, end), returns it and its box.
   Ref build(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order, const std::vector<Vec3>& centroids,
             const std::vector<Triangle>& triangles, Box& box);
+  /// Sets the node's two child boxes, widened by the slab test's margin for the mesh's extent.
+  void set_boxes(Node& n, const std::array<Box, 2>& children) const;
   /// The leaf's triangles: does one meet [a, b]?
   bool leaf_meets(Ref leaf, const Vec3& a, const Vec3& b) const;
 

@@ -7,8 +7,8 @@
 
 #include "poisson_areas.hpp"
 #include "poisson_neighbours.hpp"
+#include "poisson_queue.hpp"
 
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace medax::services {
 
@@ -24,64 +25,6 @@ namespace {
 constexpr double kMaxCandidates = 5e7;
 
 using poisson_detail::NormalRule;
-
-/// A 4-ary max-heap over candidate weights that can lower a weight in place, over the graph's
-/// numbering. Ties go to the larger candidate index (`original`), so the order of the pops is
-/// fully determined (whatever the heap's shape). Each entry carries its weight and a node's four
-/// children share a cache line, so sifting reads little memory.
-class EliminationHeap {
- public:
-  EliminationHeap(const std::vector<double>& weights, const std::vector<Index>& original) : position_(weights.size()) {
-    heap_.resize(weights.size());
-    for (std::size_t i = 0; i < heap_.size(); ++i)
-      heap_[i] = {weights[i], original[i], static_cast<Index>(i)}, position_[i] = static_cast<Index>(i);
-    for (std::size_t i = heap_.size() / kArity + 1; i-- > 0;) sift_down(i);
-  }
-  std::size_t size() const { return heap_.size(); }
-  Index pop() {
-    const Index top = heap_.front().id;
-    heap_.front() = heap_.back();
-    position_[heap_.front().id] = 0;
-    heap_.pop_back();
-    if (!heap_.empty()) sift_down(0);
-    position_[top] = kRemoved;
-    return top;
-  }
-  bool contains(Index i) const { return position_[i] != kRemoved; }
-  void decrease(Index i, double by) {
-    const std::size_t at = position_[i];
-    heap_[at].weight -= by;
-    sift_down(at);
-  }
-
- private:
-  struct alignas(16) Entry {
-    double weight;
-    Index original, id;
-    bool above(const Entry& o) const { return weight > o.weight || (weight == o.weight && original > o.original); }
-  };
-  static constexpr std::size_t kArity = 4;
-  static constexpr Index kRemoved = std::numeric_limits<Index>::max();
-  void sift_down(std::size_t i) {
-    const Entry item = heap_[i];
-    const std::size_t n = heap_.size();
-    for (;;) {
-      const std::size_t first = kArity * i + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      for (std::size_t c = first + 1; c < std::min(first + kArity, n); ++c)
-        if (heap_[c].above(heap_[best])) best = c;
-      if (!heap_[best].above(item)) break;
-      heap_[i] = heap_[best];
-      position_[heap_[i].id] = static_cast<Index>(i);
-      i = best;
-    }
-    heap_[i] = item;
-    position_[item.id] = static_cast<Index>(i);
-  }
-  std::vector<Index> position_;
-  std::vector<Entry> heap_;
-};
 
 OrientedSamples select(const OrientedSamples& candidates, const std::vector<Index>& chosen) {
   OrientedSamples out;
@@ -134,24 +77,20 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
   const poisson_detail::EliminationWeight weight(r_min, r_max);
 
   // Each candidate's weight: the sum over its neighbours closer than r_max (closest first).
-  const poisson_detail::NeighbourGraph near =
+  poisson_detail::NeighbourGraph near =
       poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight);
-  std::vector<double> weights(candidates.size(), 0.0);
-  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
-    for (std::size_t k = near.offset[i]; k < near.offset[i + 1]; ++k) weights[i] += near.value[k];
-  });
   // The candidate with the most crowded neighbourhood goes first (sequential: each removal
   // changes its neighbours' weights).
-  EliminationHeap heap(weights, near.original);
-  while (heap.size() > count) {
-    const Index removed = heap.pop();
+  poisson_detail::EliminationQueue queue(std::move(near.sum), near.original);
+  while (queue.size() > count) {
+    const Index removed = queue.pop();
     for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
-      if (heap.contains(near.index[k])) heap.decrease(near.index[k], near.value[k]);
+      queue.decrease(near.index[k], near.value[k]);
   }
   std::vector<Index> kept;
   kept.reserve(count);
   for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (heap.contains(static_cast<Index>(i))) kept.push_back(near.original[i]);
+    if (queue.contains(static_cast<Index>(i))) kept.push_back(near.original[i]);
   std::sort(kept.begin(), kept.end());
   OrientedSamples out = select(candidates, kept);
   out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * r_max, rule);

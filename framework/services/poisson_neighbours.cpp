@@ -2,6 +2,8 @@
 
 #include "poisson_grid.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -20,45 +22,101 @@ struct Near {
   bool operator<(const Near& o) const { return d2 < o.d2 || (d2 == o.d2 && original < o.original); }
 };
 
-/// The rows of the neighbour graph for a run of grid positions, before they are copied into place.
-struct Rows {
-  std::vector<Index> index;
-  std::vector<double> value;
-};
+/// The fixed-radius search from the points of one cell: the points of the 27 cells around it
+/// (itself included), coordinates apart, so that the distances from a point to all of them are
+/// computed in one vectorised loop.
+class Surroundings {
+ public:
+  Surroundings(const std::vector<Vec3>& at, const std::vector<Vec3>& normal, double radius, const NormalRule& rule)
+      : at_(at), normal_(normal), radius_(radius), rule_(rule) {}
 
-/// The graph's rows for the points of cells [first, last): for each, the points of the 27 cells
-/// around with |p_k - p_j| < radius and agreeing normals, closest first (ties by candidate index).
-/// Counts each row's length in count[k].
-void rows_of_cells(const CellGrid& grid, const std::vector<Vec3>& at, const std::vector<Vec3>& normal,
-                   const std::vector<Index>& original, std::size_t first, std::size_t last, double radius,
-                   const NormalRule& rule, const EliminationWeight& weigh, Rows& rows, std::size_t* count) {
-  const double r2 = radius * radius;
-  std::vector<Near> near;
-  for (std::size_t c = first; c < last; ++c) {
-    std::array<std::pair<std::size_t, std::size_t>, 27> around;
-    int n = 0;
-    for (std::uint32_t cell : grid.around(c))
-      if (cell != CellGrid::kNone) around[n++] = grid.range(cell);
-    const auto [begin, end] = grid.range(c);
-    for (std::size_t k = begin; k < end; ++k) {
-      const Vec3& q = at[k];
-      near.clear();
-      for (int a = 0; a < n; ++a)
-        for (std::size_t j = around[a].first; j < around[a].second; ++j) {
-          // Summed in this order, as nanoflann does, so distances match a k-d tree's to the bit.
-          const double dx = q.x() - at[j].x(), dy = q.y() - at[j].y(), dz = q.z() - at[j].z();
-          const double d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 < r2 && j != k && std::sqrt(d2) < radius && rule.agree(normal[k], normal[j]))
-            near.push_back({d2, original[j], static_cast<Index>(j)});
-        }
-      std::sort(near.begin(), near.end());
-      for (const Near& m : near) {
-        rows.index.push_back(m.k);
-        rows.value.push_back(weigh(std::sqrt(m.d2)));
+  /// Gathers the points of the cells `around` (CellGrid::around).
+  void gather(const CellGrid& grid, const std::array<std::uint32_t, 27>& around) {
+    x_.clear(), y_.clear(), z_.clear(), position_.clear();
+    for (std::uint32_t cell : around) {
+      if (cell == CellGrid::kNone) continue;
+      const auto [begin, end] = grid.range(cell);
+      for (std::size_t j = begin; j < end; ++j) {
+        x_.push_back(at_[j].x()), y_.push_back(at_[j].y()), z_.push_back(at_[j].z());
+        position_.push_back(static_cast<Index>(j));
       }
-      count[k + 1] = near.size();
+    }
+    d2_.resize(x_.size());
+  }
+  /// Calls found(j, d2) for every gathered point j with |p_k - p_j| < radius and agreeing normals
+  /// (k: a point of the gathered cell).
+  template <typename F>
+  void near(std::size_t k, const F& found) {
+    const double qx = at_[k].x(), qy = at_[k].y(), qz = at_[k].z(), r2 = radius_ * radius_;
+    const std::size_t n = x_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      // Summed in this order, as nanoflann does, so distances match a k-d tree's to the bit.
+      const double dx = qx - x_[i], dy = qy - y_[i], dz = qz - z_[i];
+      d2_[i] = dx * dx + dy * dy + dz * dz;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!(d2_[i] < r2)) continue;
+      const std::size_t j = position_[i];
+      if (j != k && std::sqrt(d2_[i]) < radius_ && rule_.agree(normal_[k], normal_[j])) found(j, d2_[i]);
     }
   }
+
+ private:
+  const std::vector<Vec3>& at_;
+  const std::vector<Vec3>& normal_;
+  double radius_;
+  const NormalRule& rule_;
+  std::vector<double> x_, y_, z_, d2_;
+  std::vector<Index> position_;
+};
+
+/// The cells around every cell (CellGrid::around), looked up once for the two passes.
+using Neighbourhoods = std::vector<std::array<std::uint32_t, 27>>;
+
+/// Calls row(search, k) for every grid position k, cell by cell in parallel, `search` holding the
+/// points around k's cell.
+template <typename F>
+void for_each_point(const CellGrid& grid, const Neighbourhoods& around, const Surroundings& prototype, const F& row) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, grid.cells()), [&](const tbb::blocked_range<std::size_t>& cells) {
+    Surroundings search = prototype;
+    for (std::size_t c = cells.begin(); c != cells.end(); ++c) {
+      search.gather(grid, around[c]);
+      const auto [begin, end] = grid.range(c);
+      for (std::size_t k = begin; k < end; ++k) row(search, k);
+    }
+  });
+}
+
+/// The length of every row: count[k + 1] for grid position k.
+void count_rows(const CellGrid& grid, const Neighbourhoods& around, const Surroundings& prototype,
+                std::vector<std::size_t>& count) {
+  for_each_point(grid, around, prototype, [&](Surroundings& search, std::size_t k) {
+    std::size_t n = 0;
+    search.near(k, [&n](std::size_t, double) { ++n; });
+    count[k + 1] = n;
+  });
+}
+
+/// Each row in place (closest first, ties by candidate index) with its values, and each row's
+/// values summed in row order.
+void fill_rows(const CellGrid& grid, const Neighbourhoods& around, const Surroundings& prototype,
+               const EliminationWeight& weigh, NeighbourGraph& out) {
+  tbb::enumerable_thread_specific<std::vector<Near>> scratch;
+  for_each_point(grid, around, prototype, [&](Surroundings& search, std::size_t k) {
+    std::vector<Near>& near = scratch.local();
+    near.clear();
+    search.near(k, [&](std::size_t j, double d2) { near.push_back({d2, out.original[j], static_cast<Index>(j)}); });
+    std::sort(near.begin(), near.end());
+    double sum = 0;
+    std::size_t at_row = out.offset[k];
+    for (const Near& m : near) {
+      const double value = weigh(std::sqrt(m.d2));
+      out.index[at_row] = m.k;
+      out.value[at_row++] = value;
+      sum += value;
+    }
+    out.sum[k] = sum;
+  });
 }
 
 template <typename T>
@@ -78,25 +136,17 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
   const CellGrid grid(points, radius);
   out.original = grid.order();
   const std::vector<Vec3> at = gather(points, out.original), normal = gather(normals, out.original);
-  // One pass over fixed blocks of cells, each filling its own rows (consecutive grid positions);
-  // then each block's rows are copied into place.
-  constexpr std::size_t kBlock = 64;
-  const std::size_t blocks = (grid.cells() + kBlock - 1) / kBlock;
-  const auto cells_of = [&](std::size_t b) { return std::pair{b * kBlock, std::min(grid.cells(), (b + 1) * kBlock)}; };
-  std::vector<Rows> found(blocks);
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    const auto [first, last] = cells_of(b);
-    rows_of_cells(grid, at, normal, out.original, first, last, radius, rule, weigh, found[b], out.offset.data());
-  });
+  // Two passes over the cells, the rows' lengths and then the rows in place: the rows are written
+  // once, where they stay (no per-block copies of them to gather).
+  const Surroundings search(at, normal, radius, rule);
+  Neighbourhoods around(grid.cells());
+  tbb::parallel_for(std::size_t{0}, grid.cells(), [&](std::size_t c) { around[c] = grid.around(c); });
+  count_rows(grid, around, search, out.offset);
   std::partial_sum(out.offset.begin(), out.offset.end(), out.offset.begin());
   out.index.resize(out.offset.back());
   out.value.resize(out.offset.back());
-  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-    const std::size_t at_row = out.offset[grid.range(cells_of(b).first).first];
-    std::copy(found[b].index.begin(), found[b].index.end(), out.index.begin() + at_row);
-    std::copy(found[b].value.begin(), found[b].value.end(), out.value.begin() + at_row);
-    found[b] = {};
-  });
+  out.sum.resize(points.size());
+  fill_rows(grid, around, search, weigh, out);
   return out;
 }
 

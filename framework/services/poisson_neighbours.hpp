@@ -34,12 +34,13 @@ struct EliminationWeight {
 /// neighbours are close in memory: internal point k is candidate original[k] (within a cell in
 /// ascending candidate order). Compressed rows: the neighbours of k are index[offset[k] ..
 /// offset[k + 1]) (internal numbers), closest first with ties by candidate index, each with its
-/// weight in `value`.
+/// weight in `value`; sum[k] adds up the row's values in that order.
 struct NeighbourGraph {
   std::vector<Index> original;
   std::vector<std::size_t> offset;
   std::vector<Index> index;
   std::vector<double> value;
+  std::vector<double> sum;
 };
 
 /// For every point, the other points closer than `radius` whose normals agree by `rule`, each

@@ -202,13 +202,13 @@ void Simplifier::queue_all_edges() {
   queue_.heapify();
 }
 
-/// Re-costs v's edges. The neighbours' quadrics and spheres lie anywhere in memory: they are
-/// all requested before the first edge is costed, so that their cache misses overlap.
+/// Re-costs v's edges. The neighbours' quadrics, spheres and lists lie anywhere in memory: they
+/// are all requested before the first edge is costed, so that their cache misses overlap.
 void Simplifier::queue_edges_of(Index v) {
   for (Index n : mesh_.neighbours(v)) {
     __builtin_prefetch(&slab_[n]);
     __builtin_prefetch(reinterpret_cast<const char*>(&slab_[n]) + 64);
-    __builtin_prefetch(&mesh_.spheres[n]);
+    mesh_.prefetch(n);
   }
   for (Index n : mesh_.neighbours(v))
     if (auto e = evaluate(v, n, flip_test_)) queue_.push(*e);

@@ -43,6 +43,13 @@ class CollapseMesh {
   /// Whether a live face has the corners a, b, c (in any order).
   bool has_face(Index a, Index b, Index c) const;
 
+  /// Requests v's sphere and lists into the cache (a hint: v's edges are about to be costed).
+  void prefetch(Index v) const {
+    __builtin_prefetch(&spheres[v]);
+    __builtin_prefetch(face_list(v).begin());
+    __builtin_prefetch(neighbours(v).begin());
+  }
+
   /// Merges `gone` into `keep` (which must be adjacent); the caller sets keep's sphere.
   void merge(Index keep, Index gone);
 

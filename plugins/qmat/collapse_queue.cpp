@@ -49,6 +49,8 @@ void CollapseQueue::sift_up(std::size_t at) {
   heap_[at] = moving;
 }
 
+/// (The grandchildren are requested while the children are compared: the next level's cache
+/// misses then overlap this level's.)
 void CollapseQueue::sift_down(std::size_t at) {
   const Key moving = heap_[at];
   const std::size_t n = heap_.size();
@@ -56,6 +58,10 @@ void CollapseQueue::sift_down(std::size_t at) {
     const std::size_t first = kArity * at - 8;
     if (first >= n) break;
     const std::size_t last = std::min(first + kArity, n);
+    for (std::size_t c = first; c < last && kArity * c - 8 < n; ++c) {
+      __builtin_prefetch(&heap_[kArity * c - 8]);
+      __builtin_prefetch(&heap_[kArity * c - 6]);
+    }
     std::size_t least = first;
     for (std::size_t c = first + 1; c < last; ++c)
       if (after(heap_[least], heap_[c])) least = c;

@@ -8,7 +8,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 namespace medax::dey_zhao {
@@ -28,25 +30,47 @@ double bbox_diagonal(const std::vector<Vec3>& P, const DelaunayTetrahedralizatio
                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 
-/// Facet vertices closer than the tolerance are merged (cospherical points: many cells, one
-/// circumcentre); each class is represented by its lowest cell. Empty when nothing merges.
-std::optional<UnionFind> merge_close_cells(const Selection& selection, const std::vector<char>& keep,
-                                           const DelaunayTetrahedralization& dt, double tolerance) {
+/// What the kept facets' rings give: the cells used as facet vertices, and the consecutive
+/// facet vertices closer than the tolerance (cospherical points: many cells, one circumcentre).
+struct RingScan {
+  std::size_t cells = 0;
+  std::unique_ptr<std::atomic<std::uint8_t>[]> used;  ///< per cell: 1 when around a kept facet
+  std::vector<std::array<Index, 2>> close;  ///< in facet order
+};
+
+/// One pass over the kept facets' rings, in parallel blocks (close pairs gathered in block order).
+RingScan scan_rings(const Selection& selection, const std::vector<char>& keep, const DelaunayTetrahedralization& dt,
+                    double tolerance, bool parallel) {
   const auto& cc = dt.circumcentres;
-  std::optional<UnionFind> classes;
-  for (std::size_t i = 0; i < selection.selected.size(); ++i) {
-    if (!keep[i]) continue;
-    const Selected& s = selection.selected[i];
-    const Index* r = selection.rings.data() + s.ring_begin;
-    for (std::uint32_t k = 0; k < s.ring_size; ++k) {
-      if (s.open && k + 1 == s.ring_size) break;  // no Voronoi edge between the chain's two ends
-      const Index a = r[k], b = r[(k + 1) % s.ring_size];
-      if (a != b && (cc[a] - cc[b]).norm() <= tolerance) {
-        if (!classes) classes.emplace(dt.cells.size());
-        classes->unite(a, b);
+  RingScan out;
+  out.cells = dt.cells.size();
+  out.used = std::make_unique<std::atomic<std::uint8_t>[]>(out.cells);  // zeros
+  const std::size_t m = selection.selected.size();
+  std::vector<std::vector<std::array<Index, 2>>> close(services::block_count(m, kBlock));
+  services::for_blocks(m, kBlock, parallel, [&](std::size_t block, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!keep[i]) continue;
+      const Selected& s = selection.selected[i];
+      const Index* r = selection.rings.data() + s.ring_begin;
+      for (std::uint32_t k = 0; k < s.ring_size; ++k) {
+        out.used[r[k]].store(1, std::memory_order_relaxed);
+        if (s.open && k + 1 == s.ring_size) break;  // no Voronoi edge between the chain's two ends
+        const Index a = r[k], b = r[(k + 1) % s.ring_size];
+        if (a != b && (cc[a] - cc[b]).norm() <= tolerance) close[block].push_back({a, b});
       }
     }
-  }
+  });
+  for (const auto& pairs : close) out.close.insert(out.close.end(), pairs.begin(), pairs.end());
+  return out;
+}
+
+/// The merge classes of the close pairs, each represented by its lowest cell (UnionFind's rule:
+/// independent of the order of unions). Empty when nothing merges.
+std::optional<UnionFind> merge_close_cells(const RingScan& scan) {
+  std::optional<UnionFind> classes;
+  if (scan.close.empty()) return classes;
+  classes.emplace(scan.cells);
+  for (const auto& [a, b] : scan.close) classes->unite(a, b);
   return classes;
 }
 
@@ -56,30 +80,33 @@ struct CellVertices {
   std::vector<Index> cell;     ///< per vertex: its cell
 };
 
-/// Vertex numbering: the cells around kept facets in cell order, each merge class numbered once
-/// (by its lowest cell, one of the used cells, which stands for the others).
-CellVertices number_cells(const Selection& selection, const std::vector<char>& keep, std::size_t n,
-                          std::optional<UnionFind>& classes, MedialReport& info) {
-  CellVertices out;
-  out.of_cell.assign(n, kNone);
-  for (std::size_t i = 0; i < selection.selected.size(); ++i) {
-    if (!keep[i]) continue;
-    const Selected& s = selection.selected[i];
-    for (std::uint32_t k = 0; k < s.ring_size; ++k) out.of_cell[selection.rings[s.ring_begin + k]] = 0;
-  }
+/// Vertex numbering: the used cells in cell order, each merge class numbered once (by its
+/// lowest cell, one of the used cells, which stands for the others). Blocks count their cells,
+/// then number them from their offsets, in parallel.
+CellVertices number_cells(RingScan& scan, std::optional<UnionFind>& classes, bool parallel, MedialReport& info) {
+  const std::size_t n = scan.cells;
+  const auto used = [&](std::size_t c) { return scan.used[c].load(std::memory_order_relaxed) != 0; };
   std::vector<Index> merged;
   if (classes)
     for (std::size_t c = 0; c < n; ++c)
-      if (out.of_cell[c] != kNone && classes->find(static_cast<Index>(c)) != c) {
-        out.of_cell[c] = kNone;
+      if (used(c) && classes->find(static_cast<Index>(c)) != c) {
+        scan.used[c].store(0, std::memory_order_relaxed);
         merged.push_back(static_cast<Index>(c));
       }
   info.merged_vertices += merged.size();
-  for (std::size_t c = 0; c < n; ++c)
-    if (out.of_cell[c] != kNone) {
-      out.of_cell[c] = static_cast<Index>(out.cell.size());
-      out.cell.push_back(static_cast<Index>(c));
-    }
+  std::vector<std::size_t> offset(services::block_count(n, kBlock) + 1, 0);
+  services::for_blocks(n, kBlock, parallel, [&](std::size_t block, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) offset[block + 1] += used(c);
+  });
+  for (std::size_t b = 0; b + 1 < offset.size(); ++b) offset[b + 1] += offset[b];
+  CellVertices out;
+  out.of_cell.assign(n, kNone);
+  out.cell.resize(offset.back());
+  services::for_blocks(n, kBlock, parallel, [&](std::size_t block, std::size_t begin, std::size_t end) {
+    auto v = static_cast<Index>(offset[block]);
+    for (std::size_t c = begin; c < end; ++c)
+      if (used(c)) out.of_cell[c] = v, out.cell[v++] = static_cast<Index>(c);
+  });
   for (Index c : merged) out.of_cell[c] = out.of_cell[classes->find(c)];
   return out;
 }
@@ -269,45 +296,49 @@ std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialCom
   return edges;
 }
 
-/// Sorted by (a, b), each edge once (a Voronoi edge bounds up to three selected facets): a
-/// counting sort by a, then each (short) bucket sorted and deduplicated.
-std::vector<EdgeRecord> sort_unique_edges(const std::vector<EdgeRecord>& edges, std::size_t nv, bool parallel) {
-  std::vector<std::size_t> start(nv + 1, 0);
+/// The edges bucketed by their lower vertex a (a counting sort, stable): bucket v holds
+/// bucketed[start[v], start[v + 1]).
+void bucket_edges(const std::vector<EdgeRecord>& edges, std::size_t nv, std::vector<EdgeRecord>& bucketed,
+                  std::vector<std::size_t>& start) {
+  start.assign(nv + 1, 0);
   for (const EdgeRecord& e : edges) ++start[e.a + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<EdgeRecord> bucketed(edges.size());
-  {
-    std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-    for (const EdgeRecord& e : edges) bucketed[cursor[e.a]++] = e;
-  }
-  std::vector<std::uint32_t> kept(nv, 0);
-  const auto sort_bucket = [&](std::size_t v) {
-    const auto first = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]);
-    const auto last = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
-    std::sort(first, last);
-    kept[v] = static_cast<std::uint32_t>(
-        std::unique(first, last, [](const EdgeRecord& x, const EdgeRecord& y) { return x.b == y.b; }) - first);
-  };
-  if (parallel) tbb::parallel_for(std::size_t{0}, nv, sort_bucket);
-  else for (std::size_t v = 0; v < nv; ++v) sort_bucket(v);
-  std::vector<EdgeRecord> out;
-  out.reserve(edges.size());
-  for (std::size_t v = 0; v < nv; ++v)
-    out.insert(out.end(), bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]),
-               bucketed.begin() + static_cast<std::ptrdiff_t>(start[v] + kept[v]));
-  return out;
+  bucketed.resize(edges.size());
+  std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
+  for (const EdgeRecord& e : edges) bucketed[cursor[e.a]++] = e;
 }
 
-/// The closure's edges with their labels `fan_diagonal` and, when clipping, `clipped`. The edges
-/// first, then their columns at that size (add_edge would grow each column per edge).
-void add_edges(MedialComplex& medial, const std::vector<EdgeRecord>& edges, bool clip) {
-  medial.edges.reserve(edges.size());
-  for (const EdgeRecord& e : edges) medial.edges.push_back({e.a, e.b});
+/// The closure's edges into the complex, sorted by (a, b), each once (a Voronoi edge bounds up
+/// to three selected facets; the first record of an (a, b) in EdgeRecord's order is kept), with
+/// their labels `fan_diagonal` and, when clipping, `clipped`: each (short) bucket of
+/// bucket_edges sorted and deduplicated, then written at its offset, in parallel.
+void add_edges(MedialComplex& medial, const std::vector<EdgeRecord>& edges, bool clip, bool parallel) {
+  const std::size_t nv = medial.num_vertices();
+  std::vector<EdgeRecord> bucketed;
+  std::vector<std::size_t> start;
+  bucket_edges(edges, nv, bucketed, start);
+  std::vector<std::size_t> kept(nv + 1, 0);  // then: the offset of each bucket's edges
+  services::for_blocks(nv, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const auto first = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]);
+      const auto last = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+      std::sort(first, last);
+      kept[v + 1] = static_cast<std::size_t>(
+          std::unique(first, last, [](const EdgeRecord& x, const EdgeRecord& y) { return x.b == y.b; }) - first);
+    }
+  });
+  for (std::size_t v = 0; v < nv; ++v) kept[v + 1] += kept[v];
+  medial.edges.resize(kept[nv]);
   auto& fan_diagonal = medial.add(kFanDiagonal);
-  for (std::size_t i = 0; i < edges.size(); ++i) fan_diagonal[i] = edges[i].diagonal;
-  if (!clip) return;
-  auto& clipped = medial.add(kClipped);
-  for (std::size_t i = 0; i < edges.size(); ++i) clipped[i] = edges[i].clipped;
+  std::vector<int>* clipped = clip ? &medial.add(kClipped) : nullptr;
+  services::for_blocks(nv, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+      for (std::size_t i = kept[v], k = start[v]; i < kept[v + 1]; ++i, ++k) {
+        medial.edges[i] = {bucketed[k].a, bucketed[k].b};
+        fan_diagonal[i] = bucketed[k].diagonal;
+        if (clipped) (*clipped)[i] = bucketed[k].clipped;
+      }
+  });
 }
 
 }  // namespace
@@ -315,8 +346,9 @@ void add_edges(MedialComplex& medial, const std::vector<EdgeRecord>& edges, bool
 MedialComplex build_complex(const Renumbered& points, const DelaunayTetrahedralization& dt, const Selection& selection,
                             const std::vector<char>& keep, const MedialOptions& options, MedialReport& info) {
   const double diagonal = bbox_diagonal(points.P, dt);
-  std::optional<UnionFind> classes = merge_close_cells(selection, keep, dt, options.merge_tolerance * diagonal);
-  const CellVertices cells = number_cells(selection, keep, dt.cells.size(), classes, info);
+  RingScan scan = scan_rings(selection, keep, dt, options.merge_tolerance * diagonal, options.parallel);
+  std::optional<UnionFind> classes = merge_close_cells(scan);
+  const CellVertices cells = number_cells(scan, classes, options.parallel, info);
   MedialComplex medial;
   medial.generator_kind = options.generator_kind;
   add_cell_vertices(medial, cells, dt, points.original, options.parallel);
@@ -324,8 +356,7 @@ MedialComplex build_complex(const Renumbered& points, const DelaunayTetrahedrali
   std::vector<FacetBlock> blocks = triangulate_facets(selection, keep, cells.of_cell, rays, points.original,
                                                       options.parallel);
   const std::vector<EdgeRecord> edges = gather_facets(blocks, medial, options.parallel, info);
-  add_edges(medial, sort_unique_edges(edges, medial.num_vertices(), options.parallel),
-            options.unbounded == Unbounded::Clip);
+  add_edges(medial, edges, options.unbounded == Unbounded::Clip, options.parallel);
   return medial;
 }
 

@@ -17,7 +17,7 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 K::Point_3 point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
 
-constexpr std::uint32_t kLeafSize = 4;
+constexpr std::uint32_t kLeafSize = 2;
 
 double max_abs(const Vec3& p) { return p.cwiseAbs().maxCoeff(); }
 

@@ -187,27 +187,32 @@ void select_block(const std::vector<Vec3>& P, const std::vector<Index>& original
   }
 }
 
-/// The blocks' selections concatenated in block order (each block emptied), and their counts.
-Selection concatenate(std::vector<SelectionBlock>& blocks, MedialReport& info) {
-  Selection out;
-  std::size_t count = 0, ring_total = 0;
-  for (const auto& b : blocks) count += b.selected.size(), ring_total += b.rings.size();
-  out.selected.reserve(count);
-  out.rings.reserve(ring_total);
-  for (auto& b : blocks) {
-    const auto shift = static_cast<std::uint32_t>(out.rings.size());
-    for (Selected s : b.selected) {
-      s.ring_begin += shift;
-      out.selected.push_back(s);
-    }
-    out.rings.insert(out.rings.end(), b.rings.begin(), b.rings.end());
-    info.selected_angle += b.angle;
-    info.selected_ratio += b.ratio;
-    info.unbounded += b.unbounded;
-    info.unbounded_dropped += b.dropped;
-    info.selected += b.selected.size() + b.dropped;
-    b = SelectionBlock{};
+/// The blocks' selections concatenated in block order (each block emptied; copied in
+/// parallel at offsets fixed beforehand), and their counts.
+Selection concatenate(std::vector<SelectionBlock>& blocks, bool parallel, MedialReport& info) {
+  std::vector<std::size_t> selected_at(blocks.size() + 1, 0), ring_at(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    selected_at[b + 1] = selected_at[b] + blocks[b].selected.size();
+    ring_at[b + 1] = ring_at[b] + blocks[b].rings.size();
+    info.selected_angle += blocks[b].angle;
+    info.selected_ratio += blocks[b].ratio;
+    info.unbounded += blocks[b].unbounded;
+    info.unbounded_dropped += blocks[b].dropped;
+    info.selected += blocks[b].selected.size() + blocks[b].dropped;
   }
+  Selection out;
+  out.selected.resize(selected_at.back());
+  out.rings.resize(ring_at.back());
+  services::for_blocks(blocks.size(), 1, parallel, [&](std::size_t b, std::size_t, std::size_t) {
+    const auto shift = static_cast<std::uint32_t>(ring_at[b]);
+    for (std::size_t i = 0; i < blocks[b].selected.size(); ++i) {
+      Selected s = blocks[b].selected[i];
+      s.ring_begin += shift;
+      out.selected[selected_at[b] + i] = s;
+    }
+    std::copy(blocks[b].rings.begin(), blocks[b].rings.end(), out.rings.begin() + static_cast<std::ptrdiff_t>(ring_at[b]));
+    blocks[b] = SelectionBlock{};
+  });
   return out;
 }
 
@@ -220,7 +225,7 @@ Selection select_edges(const Renumbered& points, const DelaunayTetrahedralizatio
   services::for_blocks(n, kBlock, options.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
     select_block(points.P, points.original, dt, u, options, begin, end, blocks[b]);
   });
-  return concatenate(blocks, info);
+  return concatenate(blocks, options.parallel, info);
 }
 
 }  // namespace medax::dey_zhao

@@ -189,6 +189,10 @@ void Simplifier::queue_all_edges() {
   std::vector<std::vector<Entry>> blocks(services::block_count(n, kCostBlock));
   services::for_blocks(n, kCostBlock, options_.parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
     FlipTest flips(mesh_);
+    std::size_t edges = 0;
+    for (auto i = static_cast<Index>(begin); i < end; ++i)
+      for (Index j : mesh_.neighbours(i)) edges += i < j;
+    blocks[b].reserve(edges);
     for (auto i = static_cast<Index>(begin); i < end; ++i)
       for (Index j : mesh_.neighbours(i))
         if (i < j)

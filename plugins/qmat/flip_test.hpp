@@ -54,7 +54,7 @@ class FlipTest {
   bool gather_until_flip(Fan& fan, Index other, const Vec3& centre);
 
   static constexpr std::size_t kSlots = 256;             // fans kept, at slot vertex % kSlots
-  static constexpr std::size_t kArenaCorners = 256 * 16;  // the arena starts over beyond this
+  static constexpr std::size_t kArenaCorners = 1024;  // the arena starts over beyond this (80 KiB: in L2)
 
   const CollapseMesh& mesh_;
   std::vector<Fan> slots_ = std::vector<Fan>(kSlots);

@@ -37,6 +37,19 @@ OrientedSamples select(const OrientedSamples& candidates, const std::vector<Inde
   return out;
 }
 
+/// Asks the cache for the neighbour row of candidate i. The pops jump around in memory, and
+/// fetching each removal's row is most of the elimination's time: the row of the queue's likely
+/// next pop is fetched while the current removal's neighbours are lowered.
+void prefetch_row(const poisson_detail::NeighbourGraph& near, Index i) {
+  const std::size_t first = near.offset[i], last = near.offset[i + 1];
+  if (first == last) return;
+  constexpr std::size_t kLine = 64;
+  for (std::size_t k = first; k < last; k += kLine / sizeof(Index)) __builtin_prefetch(&near.index[k]);
+  for (std::size_t k = first; k < last; k += kLine / sizeof(double)) __builtin_prefetch(&near.value[k]);
+  __builtin_prefetch(&near.index[last - 1]);
+  __builtin_prefetch(&near.value[last - 1]);
+}
+
 double checked_area(const SurfaceMesh& mesh) {
   const double area = surface_area(mesh);
   if (!(area > 0) || !std::isfinite(area)) throw std::invalid_argument("cannot sample a mesh with zero area");
@@ -84,8 +97,11 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
   poisson_detail::EliminationQueue queue(std::move(near.sum), near.original);
   while (queue.size() > count) {
     const Index removed = queue.pop();
+    const Index next = queue.likely_next();
+    __builtin_prefetch(&near.offset[next]);
     for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
       queue.decrease(near.index[k], near.value[k]);
+    prefetch_row(near, next);
   }
   std::vector<Index> kept;
   kept.reserve(count);

@@ -1,10 +1,11 @@
 // Tangent Voronoi areas of Poisson-disk samples. Each area clips a polygon by the bisectors of
 // the sample's 16 nearest samples (itself included) in the order of a k-d tree search (nanoflann),
 // so the rounding depends on that list and its order. A grid finds the same list faster: the
-// candidates in the 27 cells around a sample, sorted by squared distance (computed as nanoflann
-// does), are the k-d tree's answer when the 16th is closer than anything outside those cells and
-// no two of the first 17 distances are equal (with a tie, the k-d tree's order depends on its
-// traversal). The few samples where the grid cannot vouch for its list go through the k-d tree.
+// candidates in the 27 cells around a sample (125 where those do not suffice), sorted by squared
+// distance (computed as nanoflann does), are the k-d tree's answer when the 16th is closer than
+// anything outside those cells and no two of the first 17 distances are equal (with a tie, the
+// k-d tree's order depends on its traversal). The few samples where the grid cannot vouch for its
+// list go through the k-d tree (built only then).
 #include "poisson_areas.hpp"
 
 #include "poisson_grid.hpp"
@@ -79,29 +80,37 @@ struct Near {
   bool operator<(const Near& o) const { return d2 < o.d2; }
 };
 
+/// The cells at most `reach` cells from a cell along each axis, in which a search can vouch for
+/// the nearest samples closer than `reach` cells from the sample.
+struct Block {
+  int reach;
+  std::vector<std::uint32_t> cells;
+};
+
 /// The k nearest of the grid's point at position `k` (cell c), closest first, as grid
-/// positions in `out`; false when the 27 cells around c cannot vouch for the k-d tree's list.
+/// positions in `out`; false when the cells of `block` cannot vouch for the k-d tree's list.
 bool grid_nearest(const CellGrid& grid, const std::vector<Vec3>& at, std::size_t c, std::size_t k, std::size_t count,
-                  const std::array<std::pair<std::size_t, std::size_t>, 27>& around, int n, std::vector<Near>& near,
-                  std::vector<std::size_t>& out) {
+                  const Block& block, std::vector<Near>& near, std::vector<std::size_t>& out) {
   const Vec3& q = at[k];
   near.clear();
-  for (int a = 0; a < n; ++a)
-    for (std::size_t j = around[a].first; j < around[a].second; ++j) {
+  for (std::uint32_t cell : block.cells) {
+    const auto [begin, end] = grid.range(cell);
+    for (std::size_t j = begin; j < end; ++j) {
       const double dx = q.x() - at[j].x(), dy = q.y() - at[j].y(), dz = q.z() - at[j].z();
       near.push_back({dx * dx + dy * dy + dz * dz, j});
     }
+  }
   if (near.size() < count) return false;
   const auto sorted = static_cast<std::ptrdiff_t>(std::min(near.size(), count + 1));
   std::nth_element(near.begin(), near.begin() + sorted - 1, near.end());
   std::sort(near.begin(), near.begin() + sorted);
   for (std::ptrdiff_t a = 1; a < sorted; ++a)
     if (near[a].d2 == near[a - 1].d2) return false;
-  // Distance from q to the outside of the 3×3×3 block of cells, less a margin for the rounding of
-  // the cell assignment.
-  const Vec3 low = grid.corner(c) - Vec3::Constant(grid.side());
-  const double clearance =
-      std::min((q - low).minCoeff(), (low + Vec3::Constant(3 * grid.side()) - q).minCoeff()) - 1e-9 * grid.side();
+  // Distance from q to the outside of the block of cells, less a margin for the rounding of the
+  // cell assignment.
+  const Vec3 low = grid.corner(c) - Vec3::Constant(block.reach * grid.side());
+  const Vec3 high = low + Vec3::Constant((2 * block.reach + 1) * grid.side());
+  const double clearance = std::min((q - low).minCoeff(), (high - q).minCoeff()) - 1e-9 * grid.side();
   if (!(clearance > 0 && std::sqrt(near[count - 1].d2) < clearance)) return false;
   out.clear();
   for (std::size_t a = 0; a < count; ++a) out.push_back(near[a].k);
@@ -126,17 +135,20 @@ std::vector<double> grid_cell_areas(const OrientedSamples& samples, double cell_
   std::vector<double> areas(samples.size(), 0.0);
   std::mutex left_mutex;
   tbb::parallel_for(std::size_t{0}, grid.cells(), [&](std::size_t c) {
-    std::array<std::pair<std::size_t, std::size_t>, 27> around;
-    int n = 0;
-    for (std::uint32_t cell : grid.around(c))
-      if (cell != CellGrid::kNone) around[n++] = grid.range(cell);
+    const Block around{1, grid.within(c, 1)};
+    Block wider{2, {}};
     std::vector<Near> near;
     std::vector<std::size_t> nearest;
     Polygon polygon, clipped;
     std::vector<Index> missed;
     const auto [begin, end] = grid.range(c);
     for (std::size_t k = begin; k < end; ++k) {
-      if (grid_nearest(grid, at, c, k, count, around, n, near, nearest))
+      // Where the 27 cells around cannot vouch for the list (a sample far from the others), the
+      // 125 cells around may.
+      bool found = grid_nearest(grid, at, c, k, count, around, near, nearest);
+      if (!found && wider.cells.empty()) wider.cells = grid.within(c, wider.reach);
+      if (!found) found = grid_nearest(grid, at, c, k, count, wider, near, nearest);
+      if (found)
         areas[grid.order()[k]] = cell_area(at, normal, k, nearest, rule, start, polygon, clipped);
       else
         missed.push_back(grid.order()[k]);

@@ -46,13 +46,26 @@ std::vector<std::uint32_t> CellGrid::cell_of_points() const {
   return cell;
 }
 
-std::array<std::uint32_t, 27> CellGrid::around(std::size_t c) const {
+template <typename F>
+void CellGrid::for_each_within(std::size_t c, int reach, const F& f) const {
   const auto centre = coordinates(c);
+  for (std::int64_t dx = -reach; dx <= reach; ++dx)
+    for (std::int64_t dy = -reach; dy <= reach; ++dy)
+      for (std::int64_t dz = -reach; dz <= reach; ++dz) f(find({centre[0] + dx, centre[1] + dy, centre[2] + dz}));
+}
+
+std::array<std::uint32_t, 27> CellGrid::around(std::size_t c) const {
   std::array<std::uint32_t, 27> out;
   int n = 0;
-  for (std::int64_t dx = -1; dx <= 1; ++dx)
-    for (std::int64_t dy = -1; dy <= 1; ++dy)
-      for (std::int64_t dz = -1; dz <= 1; ++dz) out[n++] = find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
+  for_each_within(c, 1, [&](std::uint32_t cell) { out[n++] = cell; });
+  return out;
+}
+
+std::vector<std::uint32_t> CellGrid::within(std::size_t c, int reach) const {
+  std::vector<std::uint32_t> out;
+  for_each_within(c, reach, [&](std::uint32_t cell) {
+    if (cell != kNone) out.push_back(cell);
+  });
   return out;
 }
 
@@ -77,8 +90,8 @@ std::uint32_t CellGrid::find(const std::array<std::int64_t, 3>& cell) const {
     if (x < 0 || x >= kAxisCells) return kNone;
   const std::uint64_t key = pack(cell);
   for (std::size_t slot = hash(key);; slot = (slot + 1) & mask_) {
-    const std::uint32_t c = table_[slot];
-    if (c == kNone || keys_[c] == key) return c;
+    const Slot& at = table_[slot];
+    if (at.cell == kNone || at.key == key) return at.cell;
   }
 }
 
@@ -92,11 +105,11 @@ void CellGrid::build_table() {
   while ((std::size_t{1} << bits) < 2 * keys_.size()) ++bits;
   shift_ = 64 - bits;
   mask_ = (std::size_t{1} << bits) - 1;
-  table_.assign(std::size_t{1} << bits, kNone);
+  table_.assign(std::size_t{1} << bits, Slot{0, kNone});
   for (std::size_t c = 0; c < keys_.size(); ++c) {
     std::size_t slot = hash(keys_[c]);
-    while (table_[slot] != kNone) slot = (slot + 1) & mask_;
-    table_[slot] = static_cast<std::uint32_t>(c);
+    while (table_[slot].cell != kNone) slot = (slot + 1) & mask_;
+    table_[slot] = {keys_[c], static_cast<std::uint32_t>(c)};
   }
 }
 

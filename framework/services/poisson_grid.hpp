@@ -37,10 +37,15 @@ class CellGrid {
   std::vector<std::uint32_t> cell_of_points() const;
   /// The non-empty cells among the 27 around cell c (itself included), kNone for the others.
   std::array<std::uint32_t, 27> around(std::size_t c) const;
+  /// The non-empty cells at most `reach` cells away from cell c along each axis (itself included).
+  std::vector<std::uint32_t> within(std::size_t c, int reach) const;
   /// The lowest corner of cell c.
   Vec3 corner(std::size_t c) const;
 
  private:
+  /// Calls f(cell or kNone) for the cells at most `reach` away from cell c along each axis.
+  template <typename F>
+  void for_each_within(std::size_t c, int reach, const F& f) const;
   std::array<std::int64_t, 3> coordinates(std::size_t c) const;
   std::array<std::int64_t, 3> cell_of(const Vec3& p) const;
   std::uint32_t find(const std::array<std::int64_t, 3>& cell) const;
@@ -53,7 +58,12 @@ class CellGrid {
   std::vector<Index> order_;
   std::vector<std::size_t> start_;
   std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> table_;
+  /// A slot of the table holds the cell's key beside it, so a look-up reads one place.
+  struct Slot {
+    std::uint64_t key;
+    std::uint32_t cell;
+  };
+  std::vector<Slot> table_;
   int shift_ = 60;
   std::size_t mask_ = 15;
 };

@@ -39,6 +39,8 @@ class EliminationQueue {
     refresh_top();
     return top;
   }
+  /// The candidate the next pop returns unless its weight was lowered since it was keyed.
+  Index likely_next() const { return heap_.front().id; }
   /// Lowers the weight of candidate i (a removed candidate stays removed).
   void decrease(Index i, double by) { current_[i] -= by; }
   /// Whether candidate i is still queued.

@@ -1,5 +1,7 @@
 #include <medax/services/delaunay.hpp>
 
+#include "delaunay_free_lists.hpp"
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
@@ -32,15 +34,10 @@ namespace medax::services {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-/// A vertex's input point (its name in the output) and its rank (which orders the cells).
-struct VertexInfo {
-  Index point = 0;
-  Index rank = 0;
-};
+using delaunay_detail::CellNumber;
+using delaunay_detail::VertexInfo;
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VertexInfo, K>;
-// Each cell stores its index in the output (-1 for infinite cells), so neighbours are read
-// directly instead of through a handle -> index map.
-using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int64_t, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+using Cb = CGAL::Triangulation_cell_base_with_info_3<CellNumber, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
 // Small inputs: CGAL's sequential range insertion, as medax always did (the exact results the
 // plugins' tests were written against).
 using SequentialTriangulation =
@@ -222,7 +219,7 @@ void write_cell(DelaunayTetrahedralization& out, std::size_t i, const CellHandle
   const std::array<int, 4> corner = canonical_corners(v, canonical);
   for (int k = 0; k < 4; ++k) {
     out.cells[i][k] = v[corner[k]];
-    out.neighbours[i][k] = c->neighbor(corner[k])->info();  // kInfinite for infinite cells
+    out.neighbours[i][k] = c->neighbor(corner[k])->info().value;  // kInfinite for infinite cells
   }
   const auto& p0 = c->vertex(corner[0])->point();
   const K::Point_3 cc = robust_circumcenter(p0, c->vertex(corner[1])->point(), c->vertex(corner[2])->point(),
@@ -242,14 +239,14 @@ DelaunayTetrahedralization extract(Triangulation& dt, std::size_t ranks, bool pa
   // Only the infinite cells keep kInfinite: the finite ones are numbered below.
   std::vector<typename Triangulation::Cell_handle> infinite;
   dt.incident_cells(dt.infinite_vertex(), std::back_inserter(infinite));
-  for (const auto& c : infinite) c->info() = DelaunayTetrahedralization::kInfinite;
+  for (const auto& c : infinite) c->info().value = DelaunayTetrahedralization::kInfinite;
   const std::size_t n = cells.size();
 
   cells = cells_in_canonical_order(cells, ranks, parallel);
   for_each_chunk(n, parallel, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i + kFetchCellAhead < end) prefetch(cells[i + kFetchCellAhead]->info(), true);
-      cells[i]->info() = static_cast<std::int64_t>(i);
+      cells[i]->info().value = static_cast<std::int64_t>(i);
     }
   });
 

@@ -71,23 +71,30 @@ struct SegmentSlabs {
     return t0 <= t1;
   }
 
-  /// Bit k: the segment may meet the box of the node's child k. Both boxes in one pass of
-  /// two-lane arithmetic (each lane the operations of may_meet with margin 0) unless general.
+  /// Bit k: the segment may meet the box of the node's child k. Two lanes at a time (each lane
+  /// the operations of may_meet with margin 0) unless general.
   template <typename Node>
   int may_meet_children(const Node& n) const {
 #if defined(__SSE2__)
     if (!general) {
-      __m128d t0 = _mm_setzero_pd(), t1 = _mm_set1_pd(1.0);
-      for (int i = 0; i < 3; ++i) {
-        const __m128d u = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.lo[i]), a2[i]), inv2[i]);
-        const __m128d v = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.hi[i]), a2[i]), inv2[i]);
-        t0 = _mm_max_pd(t0, _mm_min_pd(u, v));
-        t1 = _mm_min_pd(t1, _mm_max_pd(u, v));
+      int hits = 0;
+      for (int half = 0; half < 4; half += 2) {
+        __m128d t0 = _mm_setzero_pd(), t1 = _mm_set1_pd(1.0);
+        for (int i = 0; i < 3; ++i) {
+          const __m128d u = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.lo[i] + half), a2[i]), inv2[i]);
+          const __m128d v = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(n.hi[i] + half), a2[i]), inv2[i]);
+          t0 = _mm_max_pd(t0, _mm_min_pd(u, v));
+          t1 = _mm_min_pd(t1, _mm_max_pd(u, v));
+        }
+        hits |= _mm_movemask_pd(_mm_cmple_pd(t0, t1)) << half;
       }
-      return _mm_movemask_pd(_mm_cmple_pd(t0, t1));
+      return hits & n.slots;
     }
 #endif
-    return static_cast<int>(may_meet(n, 0)) | (static_cast<int>(may_meet(n, 1)) << 1);
+    int hits = 0;
+    for (int k = 0; k < 4; ++k)
+      if ((n.slots >> k) & 1) hits |= static_cast<int>(may_meet(n, k)) << k;
+    return hits;
   }
 };
 
@@ -142,9 +149,8 @@ SegmentMeshTest::SegmentMeshTest(const SurfaceMesh& mesh) {
   if (triangles.empty()) return;
   nodes_.reserve(triangles.size() / 2 + 1);
   Box box;
-  top_.child[0] = build(0, static_cast<std::uint32_t>(triangles.size()), order, centroids, triangles, box);
-  top_.child[1] = top_.child[0];
-  set_boxes(top_, {box, box});
+  const Ref root = build(0, static_cast<std::uint32_t>(triangles.size()), order, centroids, triangles, box);
+  set_child(top_, 0, root, box);
   triangles_.reserve(triangles.size());
   for (std::uint32_t i : order) triangles_.push_back(triangles[i]);
   planes_.reserve(triangles_.size());
@@ -153,6 +159,22 @@ SegmentMeshTest::SegmentMeshTest(const SurfaceMesh& mesh) {
     const Vec3 yz_zx_xy(u.y() * v.z(), u.z() * v.x(), u.x() * v.y()), zy_xz_yx(u.z() * v.y(), u.x() * v.z(), u.y() * v.x());
     planes_.push_back({yz_zx_xy - zy_xz_yx, yz_zx_xy.cwiseAbs() + zy_xz_yx.cwiseAbs()});
   }
+}
+
+/// Sorts order[begin, end) around its median along the longest side of the centroids' box (ties
+/// by index: deterministic) and returns the median's position.
+std::uint32_t median_split(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order,
+                           const std::vector<Vec3>& centroids) {
+  Vec3 centre_lo = centroids[order[begin]], centre_hi = centre_lo;
+  for (std::uint32_t k = begin; k < end; ++k)
+    centre_lo = centre_lo.cwiseMin(centroids[order[k]]), centre_hi = centre_hi.cwiseMax(centroids[order[k]]);
+  int axis = 0;
+  (centre_hi - centre_lo).maxCoeff(&axis);
+  const std::uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](std::uint32_t x, std::uint32_t y) {
+    return centroids[x][axis] != centroids[y][axis] ? centroids[x][axis] < centroids[y][axis] : x < y;
+  });
+  return mid;
 }
 
 SegmentMeshTest::Ref SegmentMeshTest::build(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order,
@@ -164,31 +186,30 @@ SegmentMeshTest::Ref SegmentMeshTest::build(std::uint32_t begin, std::uint32_t e
       for (const Vec3& v : triangles[order[k]]) box.lo = box.lo.cwiseMin(v), box.hi = box.hi.cwiseMax(v);
     return {begin, end - begin};
   }
-  // Median split along the longest side of the centroids' box (ties by index: deterministic).
-  Vec3 centre_lo = centroids[order[begin]], centre_hi = centre_lo;
-  for (std::uint32_t k = begin; k < end; ++k)
-    centre_lo = centre_lo.cwiseMin(centroids[order[k]]), centre_hi = centre_hi.cwiseMax(centroids[order[k]]);
-  int axis = 0;
-  (centre_hi - centre_lo).maxCoeff(&axis);
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](std::uint32_t x, std::uint32_t y) {
-    return centroids[x][axis] != centroids[y][axis] ? centroids[x][axis] < centroids[y][axis] : x < y;
-  });
+  // The ranges of the up to four children: each half split again when it is not a leaf.
+  std::vector<std::uint32_t> cuts{begin};
+  const std::uint32_t mid = median_split(begin, end, order, centroids);
+  for (const auto [from, to] : {std::pair{begin, mid}, std::pair{mid, end}}) {
+    if (to - from > kLeafSize) cuts.push_back(median_split(from, to, order, centroids));
+    cuts.push_back(to);
+  }
   const auto node = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
-  Box child_box[2];
-  const Ref left = build(begin, mid, order, centroids, triangles, child_box[0]);
-  const Ref right = build(mid, end, order, centroids, triangles, child_box[1]);
-  nodes_[node].child[0] = left, nodes_[node].child[1] = right;
-  set_boxes(nodes_[node], {child_box[0], child_box[1]});
-  box = {child_box[0].lo.cwiseMin(child_box[1].lo), child_box[0].hi.cwiseMax(child_box[1].hi)};
+  box = {Vec3::Constant(std::numeric_limits<double>::infinity()), Vec3::Constant(-std::numeric_limits<double>::infinity())};
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    Box child_box;
+    const Ref child = build(cuts[k], cuts[k + 1], order, centroids, triangles, child_box);
+    set_child(nodes_[node], static_cast<int>(k), child, child_box);
+    box = {box.lo.cwiseMin(child_box.lo), box.hi.cwiseMax(child_box.hi)};
+  }
   return {node, 0};
 }
 
-void SegmentMeshTest::set_boxes(Node& n, const std::array<Box, 2>& children) const {
+void SegmentMeshTest::set_child(Node& n, int k, Ref child, const Box& box) const {
   const double margin = slab_margin(extent_);
-  for (int k = 0; k < 2; ++k)
-    for (int i = 0; i < 3; ++i) n.lo[i][k] = children[k].lo[i] - margin, n.hi[i][k] = children[k].hi[i] + margin;
+  n.child[k] = child;
+  n.slots |= 1 << k;
+  for (int i = 0; i < 3; ++i) n.lo[i][k] = box.lo[i] - margin, n.hi[i][k] = box.hi[i] + margin;
 }
 
 bool SegmentMeshTest::leaf_meets(Ref leaf, const Vec3& a, const Vec3& b) const {
@@ -205,7 +226,7 @@ bool SegmentMeshTest::meets(const Vec3& a, const Vec3& b) const {
   if (triangles_.empty()) return false;
   const SegmentSlabs slabs(a, b, extent_);
   if (!slabs.may_meet(top_, 0)) return false;
-  Ref stack[64];  // a median split is balanced: depth ≤ log2(triangles) + 1
+  Ref stack[64];  // median splits are balanced: depth ≤ log4(triangles) + 1, up to 3 waiting per level
   int top = 0;
   stack[top++] = top_.child[0];
   while (top > 0) {
@@ -216,8 +237,8 @@ bool SegmentMeshTest::meets(const Vec3& a, const Vec3& b) const {
     }
     const Node& n = nodes_[r.first];
     const int hits = slabs.may_meet_children(n);
-    if (hits & 1) stack[top++] = n.child[0];
-    if (hits & 2) stack[top++] = n.child[1];
+    for (int k = 0; k < 4; ++k)
+      if ((hits >> k) & 1) stack[top++] = n.child[k];
   }
   return false;
 }

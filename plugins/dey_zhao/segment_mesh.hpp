@@ -27,11 +27,12 @@ class SegmentMeshTest {
   struct Ref {
     std::uint32_t first, count;
   };
-  /// An inner node: its two children's boxes ([axis][child], so that both are tested together;
-  /// widened by the slab test's margin) and the children.
+  /// An inner node: up to four children (two levels of median splits), their boxes
+  /// ([axis][child], so that they are tested together; widened by the slab test's margin).
   struct Node {
-    double lo[3][2], hi[3][2];
-    Ref child[2];
+    double lo[3][4], hi[3][4];
+    Ref child[4];
+    int slots;  ///< bit k: child k exists
   };
   using Triangle = std::array<Vec3, 3>;
   /// A triangle (a, b, c) with what its plane test needs: the 2×2 minors of (b − a, c − a), i.e.
@@ -47,12 +48,12 @@ class SegmentMeshTest {
   /// Builds the subtree of the triangles order[begin, end), returns it and its box.
   Ref build(std::uint32_t begin, std::uint32_t end, std::vector<std::uint32_t>& order, const std::vector<Vec3>& centroids,
             const std::vector<Triangle>& triangles, Box& box);
-  /// Sets the node's two child boxes, widened by the slab test's margin for the mesh's extent.
-  void set_boxes(Node& n, const std::array<Box, 2>& children) const;
+  /// Sets the node's child k and its box, widened by the slab test's margin for the mesh's extent.
+  void set_child(Node& n, int k, Ref child, const Box& box) const;
   /// The leaf's triangles: does one meet [a, b]?
   bool leaf_meets(Ref leaf, const Vec3& a, const Vec3& b) const;
 
-  Node top_{};  ///< above the root: its child 0 is the root (child 1 unused)
+  Node top_{};  ///< above the root: its only child is the root
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;  ///< in leaf order
   std::vector<Plane> planes_;        ///< of triangles_

@@ -1,12 +1,12 @@
 #include <medax/services/delaunay.hpp>
 
 #include "delaunay_free_lists.hpp"
+#include "delaunay_lock_grid.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Simple_cartesian.h>
-#include <CGAL/Spatial_lock_grid_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -47,8 +47,9 @@ using SequentialTriangulation =
 // meets a lock held by another releases its own and retries the point (non-blocking): on surface
 // samples, whose big interior cells make threads meet often, this spends about 15% less CPU
 // than CGAL's default priority locks, where the thread of higher priority spins until the
-// other lets go (and, on a loaded machine, the other may be preempted meanwhile).
-using LockGrid = CGAL::Spatial_lock_grid_3<CGAL::Tag_non_blocking>;
+// other lets go (and, on a loaded machine, the other may be preempted meanwhile). The grid is
+// CGAL's non-blocking one with a cheaper per-thread list of held locks (delaunay_lock_grid.hpp).
+using delaunay_detail::LockGrid;
 using Triangulation = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>,
                                                      CGAL::Default, LockGrid>;
 

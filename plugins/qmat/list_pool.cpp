@@ -11,6 +11,7 @@ ListPool::ListPool(const std::vector<std::size_t>& room) : spans_(room.size()) {
     spans_[v].room = static_cast<std::uint32_t>(room[v]);
     total += room[v];
   }
+  items_.reserve(2 * total);  // room for the lists that move as they grow, without copying all
   items_.resize(total);
 }
 

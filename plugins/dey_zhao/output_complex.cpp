@@ -254,14 +254,13 @@ std::vector<FacetBlock> triangulate_facets(const Selection& selection, const std
 }
 
 /// The blocks concatenated in order (each emptied): their triangles with the face labels and
-/// fields into the complex, facet numbers made global; returns their edges.
-std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialComplex& medial, bool parallel,
-                                      MedialReport& info) {
-  std::vector<std::size_t> face_offset(blocks.size() + 1, 0), edge_offset(blocks.size() + 1, 0);
+/// fields into the complex, facet numbers made global; returns their edges, block by block.
+std::vector<std::vector<EdgeRecord>> gather_facets(std::vector<FacetBlock>& blocks, MedialComplex& medial,
+                                                   bool parallel, MedialReport& info) {
+  std::vector<std::size_t> face_offset(blocks.size() + 1, 0);
   std::vector<int> facet_offset(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     face_offset[b + 1] = face_offset[b] + blocks[b].faces.size();
-    edge_offset[b + 1] = edge_offset[b] + blocks[b].edges.size();
     facet_offset[b + 1] = facet_offset[b] + blocks[b].facets;
     info.degenerate_facets += static_cast<std::size_t>(blocks[b].degenerate);
   }
@@ -275,7 +274,7 @@ std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialCom
   auto& label_unbounded = medial.add(kUnbounded);
   auto& field_angle = medial.add(kAngle);
   auto& field_ratio = medial.add(kRatio);
-  std::vector<EdgeRecord> edges(edge_offset.back());
+  std::vector<std::vector<EdgeRecord>> edges(blocks.size());
   const auto gather = [&](std::size_t b) {
     FacetBlock& block = blocks[b];
     const auto at = static_cast<std::ptrdiff_t>(face_offset[b]);
@@ -288,7 +287,7 @@ std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialCom
     std::copy(block.unbounded.begin(), block.unbounded.end(), label_unbounded.begin() + at);
     std::copy(block.angle.begin(), block.angle.end(), field_angle.begin() + at);
     std::copy(block.ratio.begin(), block.ratio.end(), field_ratio.begin() + at);
-    std::copy(block.edges.begin(), block.edges.end(), edges.begin() + static_cast<std::ptrdiff_t>(edge_offset[b]));
+    edges[b] = std::move(block.edges);
     block = FacetBlock{};
   };
   if (parallel) tbb::parallel_for(std::size_t{0}, blocks.size(), gather);
@@ -296,23 +295,25 @@ std::vector<EdgeRecord> gather_facets(std::vector<FacetBlock>& blocks, MedialCom
   return edges;
 }
 
-/// The edges bucketed by their lower vertex a (a counting sort, stable): bucket v holds
-/// bucketed[start[v], start[v + 1]).
-void bucket_edges(const std::vector<EdgeRecord>& edges, std::size_t nv, std::vector<EdgeRecord>& bucketed,
-                  std::vector<std::size_t>& start) {
+/// The edges (the blocks' in block order) bucketed by their lower vertex a (a counting sort,
+/// stable): bucket v holds bucketed[start[v], start[v + 1]).
+void bucket_edges(const std::vector<std::vector<EdgeRecord>>& edges, std::size_t nv,
+                  std::vector<EdgeRecord>& bucketed, std::vector<std::size_t>& start) {
   start.assign(nv + 1, 0);
-  for (const EdgeRecord& e : edges) ++start[e.a + 1];
+  for (const auto& block : edges)
+    for (const EdgeRecord& e : block) ++start[e.a + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  bucketed.resize(edges.size());
+  bucketed.resize(start[nv]);
   std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-  for (const EdgeRecord& e : edges) bucketed[cursor[e.a]++] = e;
+  for (const auto& block : edges)
+    for (const EdgeRecord& e : block) bucketed[cursor[e.a]++] = e;
 }
 
 /// The closure's edges into the complex, sorted by (a, b), each once (a Voronoi edge bounds up
 /// to three selected facets; the first record of an (a, b) in EdgeRecord's order is kept), with
 /// their labels `fan_diagonal` and, when clipping, `clipped`: each (short) bucket of
 /// bucket_edges sorted and deduplicated, then written at its offset, in parallel.
-void add_edges(MedialComplex& medial, const std::vector<EdgeRecord>& edges, bool clip, bool parallel) {
+void add_edges(MedialComplex& medial, const std::vector<std::vector<EdgeRecord>>& edges, bool clip, bool parallel) {
   const std::size_t nv = medial.num_vertices();
   std::vector<EdgeRecord> bucketed;
   std::vector<std::size_t> start;
@@ -355,7 +356,7 @@ MedialComplex build_complex(const Renumbered& points, const DelaunayTetrahedrali
   const RayVertices rays = add_ray_vertices(medial, selection, keep, dt, points, options.clip_factor * diagonal);
   std::vector<FacetBlock> blocks = triangulate_facets(selection, keep, cells.of_cell, rays, points.original,
                                                       options.parallel);
-  const std::vector<EdgeRecord> edges = gather_facets(blocks, medial, options.parallel, info);
+  const std::vector<std::vector<EdgeRecord>> edges = gather_facets(blocks, medial, options.parallel, info);
   add_edges(medial, edges, options.unbounded == Unbounded::Clip, options.parallel);
   return medial;
 }

@@ -50,6 +50,27 @@ void prefetch_row(const poisson_detail::NeighbourGraph& near, Index i) {
   __builtin_prefetch(&near.value[last - 1]);
 }
 
+/// Weighted sample elimination over the graph (its sums are taken as the initial weights): the
+/// candidate with the most crowded neighbourhood goes first, until `count` remain (sequential:
+/// each removal lowers its neighbours' weights). Returns the kept candidates, ascending.
+std::vector<Index> eliminate(poisson_detail::NeighbourGraph near, std::size_t count) {
+  poisson_detail::EliminationQueue queue(std::move(near.sum), near.original);
+  while (queue.size() > count) {
+    const Index removed = queue.pop();
+    const Index next = queue.likely_next();
+    __builtin_prefetch(&near.offset[next]);
+    for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
+      queue.decrease(near.index[k], near.value[k]);
+    prefetch_row(near, next);
+  }
+  std::vector<Index> kept;
+  kept.reserve(count);
+  for (std::size_t i = 0; i < near.original.size(); ++i)
+    if (queue.contains(static_cast<Index>(i))) kept.push_back(near.original[i]);
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+
 double checked_area(const SurfaceMesh& mesh) {
   const double area = surface_area(mesh);
   if (!(area > 0) || !std::isfinite(area)) throw std::invalid_argument("cannot sample a mesh with zero area");
@@ -89,26 +110,11 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
       r_max * 0.65 * (1.0 - std::pow(static_cast<double>(count) / static_cast<double>(candidates.size()), 1.5));
   const poisson_detail::EliminationWeight weight(r_min, r_max);
 
-  // Each candidate's weight: the sum over its neighbours closer than r_max (closest first).
-  poisson_detail::NeighbourGraph near =
-      poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight);
-  // The candidate with the most crowded neighbourhood goes first (sequential: each removal
-  // changes its neighbours' weights).
-  poisson_detail::EliminationQueue queue(std::move(near.sum), near.original);
-  while (queue.size() > count) {
-    const Index removed = queue.pop();
-    const Index next = queue.likely_next();
-    __builtin_prefetch(&near.offset[next]);
-    for (std::size_t k = near.offset[removed]; k < near.offset[removed + 1]; ++k)
-      queue.decrease(near.index[k], near.value[k]);
-    prefetch_row(near, next);
-  }
-  std::vector<Index> kept;
-  kept.reserve(count);
-  for (std::size_t i = 0; i < candidates.size(); ++i)
-    if (queue.contains(static_cast<Index>(i))) kept.push_back(near.original[i]);
-  std::sort(kept.begin(), kept.end());
-  OrientedSamples out = select(candidates, kept);
+  // Each candidate's weight is the sum over its neighbours closer than r_max (closest first); the
+  // graph is freed once the elimination has run.
+  OrientedSamples out = select(
+      candidates,
+      eliminate(poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight), count));
   out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * r_max, rule);
   return out;
 }

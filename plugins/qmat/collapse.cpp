@@ -52,8 +52,8 @@ class Simplifier {
   MedialComplex output(const MedialComplex& input) const;
 
  private:
-  // A vertex's stamp moves on when it moves or dies, so this also tells dead ends.
-  bool stale(const Entry& e) const { return stamps_[e.lo] != e.stamp_lo || stamps_[e.hi] != e.stamp_hi; }
+  // A vertex's stamp is the number of the change that last moved or killed it (see the queue).
+  bool stale(const Entry& e) const { return stamps_[e.lo] > e.seq || stamps_[e.hi] > e.seq; }
   std::optional<Entry> evaluate(Index i, Index j, FlipTest& flips) const;
   Vec4 optimal_sphere(Index i, Index j, FlipTest& flips, double& error) const;
   Vec4 cheapest(Index i, Index j, const SlabQuadric& q, FlipTest* flips, double& error) const;
@@ -75,6 +75,7 @@ class Simplifier {
   std::vector<Index> add_of_;     // per vertex: its add terms in add_, or kNoAdd
   std::vector<char> saved_;
   std::vector<std::uint32_t> stamps_;
+  std::uint32_t changes_ = 0;  // collapses so far: the number of the mesh's last change
   std::vector<std::vector<Index>> generators_;
   bool any_saved_ = false;
   std::size_t invalid_faces_ = 0, dropped_ = 0;
@@ -135,9 +136,7 @@ Vec4 Simplifier::optimal_sphere(Index i, Index j, FlipTest& flips, double& error
 
 std::optional<Entry> Simplifier::evaluate(Index i, Index j, FlipTest& flips) const {
   if (saved_[i] && saved_[j]) return std::nullopt;  // two saved spheres never merge
-  Entry e{0, std::min(i, j), std::max(i, j), 0, 0, Vec4::Zero()};
-  e.stamp_lo = stamps_[e.lo];
-  e.stamp_hi = stamps_[e.hi];
+  Entry e{0, std::min(i, j), std::max(i, j), changes_, Vec4::Zero()};
   double error = 0;
   if (saved_[i] || saved_[j]) {
     e.sphere = mesh_.spheres[saved_[i] ? i : j];  // collapse onto the saved sphere
@@ -231,8 +230,7 @@ void Simplifier::collapse(const Entry& e) {
     generators_[keep].insert(generators_[keep].end(), generators_[gone].begin(), generators_[gone].end());
     generators_[gone].clear();
   }
-  ++stamps_[keep];
-  ++stamps_[gone];
+  stamps_[keep] = stamps_[gone] = ++changes_;
   queue_edges_of(keep);
 }
 

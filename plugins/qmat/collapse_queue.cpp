@@ -5,7 +5,7 @@
 namespace medax::qmat {
 
 namespace {
-constexpr std::size_t kArity = 4;  // four 32-byte children: two cache lines
+constexpr std::size_t kArity = 4;  // four 24-byte children: two cache lines
 }
 
 std::uint32_t CollapseQueue::store(const Vec4& sphere) {
@@ -20,7 +20,7 @@ std::uint32_t CollapseQueue::store(const Vec4& sphere) {
 }
 
 void CollapseQueue::push_unordered(const QueuedCollapse& c) {
-  heap_.push_back({c.cost, c.lo, c.hi, c.stamp_lo, c.stamp_hi, store(c.sphere)});
+  heap_.push_back({c.cost, c.lo, c.hi, c.seq, store(c.sphere)});
 }
 
 void CollapseQueue::push(const QueuedCollapse& c) {
@@ -35,7 +35,7 @@ QueuedCollapse CollapseQueue::pop() {
   heap_.pop_back();
   if (!empty()) sift_down(kRoot);
   free_slots_.push_back(top.slot);
-  return {top.cost, top.lo, top.hi, top.stamp_lo, top.stamp_hi, spheres_[top.slot]};
+  return {top.cost, top.lo, top.hi, top.seq, spheres_[top.slot]};
 }
 
 void CollapseQueue::sift_up(std::size_t at) {
@@ -60,7 +60,7 @@ void CollapseQueue::sift_down(std::size_t at) {
     const std::size_t last = std::min(first + kArity, n);
     for (std::size_t c = first; c < last && kArity * c - 8 < n; ++c) {
       __builtin_prefetch(&heap_[kArity * c - 8]);
-      __builtin_prefetch(&heap_[kArity * c - 6]);
+      __builtin_prefetch(&heap_[kArity * c - 5]);  // the group's last key: its second line
     }
     std::size_t least = first;
     for (std::size_t c = first + 1; c < last; ++c)

@@ -1,10 +1,11 @@
 #pragma once
 // The lazy priority queue of Q-MAT's collapse loop. An entry is the collapse of edge (lo, hi)
-// costed when its endpoints had the given stamps; entries whose endpoint changed since (its
-// stamp moved on: the owner bumps a vertex's stamp when it moves or dies) are stale and skipped
-// by the caller. For speed (popping stale entries was a tenth of the work), the
-// heap is 4-ary over 32-byte keys whose sibling groups fill two whole cache lines (the storage
-// is 128-byte aligned, the root three keys in), the optimal spheres live in a slot store beside
+// costed after change number `seq` of the mesh; the owner numbers its changes 1, 2, … and stamps
+// a vertex with the number of the change that last moved or killed it, so an entry is stale (and
+// skipped by the caller) once an endpoint's stamp is above its seq. For speed (popping stale
+// entries was a tenth of the work), the heap is 4-ary over 24-byte keys whose sibling groups
+// lie in two cache lines (the storage is 128-byte aligned, the root three keys in), the
+// optimal spheres live in a slot store beside
 // it, the first entries are heapified at once, and stale entries are swept out whenever the heap
 // has grown by a quarter since the last sweep (most entries go stale before they reach the top).
 // The order is the total order (cost, lo, hi), so the pops of live entries depend on none of it.
@@ -21,7 +22,7 @@ namespace medax::qmat {
 struct QueuedCollapse {
   double cost = 0;
   Index lo = 0, hi = 0;
-  std::uint32_t stamp_lo = 0, stamp_hi = 0;
+  std::uint32_t seq = 0;  ///< the number of the mesh's last change when it was costed
   Vec4 sphere = Vec4::Zero();
 };
 
@@ -48,17 +49,19 @@ class CollapseQueue {
   struct Key {
     double cost;
     Index lo, hi;
-    std::uint32_t stamp_lo, stamp_hi;
+    std::uint32_t seq;
     std::uint32_t slot;  ///< index of the sphere in spheres_
   };
+  static_assert(sizeof(Key) == 24, "a sibling group of four keys must lie in two cache lines");
   /// Heap order: true when a comes after b (a min-heap on cost, ties by the edge's indices).
   static bool after(const Key& a, const Key& b) {
     if (a.cost != b.cost) return a.cost > b.cost;
     if (a.lo != b.lo) return a.lo > b.lo;
     return a.hi > b.hi;
   }
-  bool stale(const Key& k) const { return stamps_[k.lo] != k.stamp_lo || stamps_[k.hi] != k.stamp_hi; }
-  /// Storage aligned to a sibling group (four keys).
+  bool stale(const Key& k) const { return stamps_[k.lo] > k.seq || stamps_[k.hi] > k.seq; }
+  /// Storage aligned to 128 bytes: with the root three keys in, every sibling group (96 bytes,
+  /// starting at a multiple of 96) lies in two cache lines.
   template <typename T>
   struct GroupAligned {
     using value_type = T;
@@ -70,7 +73,7 @@ class CollapseQueue {
     friend bool operator==(const GroupAligned&, const GroupAligned&) { return true; }
   };
   /// The root's position in heap_: the children of position p are then 4p − 8 … 4p − 5, one
-  /// aligned group.
+  /// group.
   static constexpr std::size_t kRoot = 3;
   std::uint32_t store(const Vec4& sphere);
   void sift_up(std::size_t at);

@@ -5,8 +5,6 @@
 #include <medax/services/blocks.hpp>
 #include <medax/union_find.hpp>
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -178,13 +176,28 @@ struct EdgeRecord {
   }
 };
 
-/// The triangles, face labels and fields, and edges of one block of kept facets.
-struct FacetBlock {
-  std::vector<Tri> faces;
-  std::vector<int> polygon, p, q, conditions, unbounded;
-  std::vector<double> angle, ratio;
-  std::vector<EdgeRecord> edges;
+/// The closure's edge records bucketed by their lower vertex a: bucket v is
+/// records[start[v], start[v + 1]). Scattered in parallel through per-vertex cursors, so a
+/// bucket's order is unspecified; add_edges sorts it by EdgeRecord's order, a total order on
+/// every field, which makes the result independent of it.
+struct EdgeBuckets {
+  std::vector<std::size_t> start;
+  std::unique_ptr<std::atomic<std::size_t>[]> cursor;  ///< per vertex: its edge count, then its next slot
+  std::unique_ptr<EdgeRecord[]> records;  ///< not zero-filled: the scatter's writes are its first touch
+};
+
+/// What the kept facets of one block add: their facets (collapsed ones too) and triangles.
+struct BlockCount {
+  std::size_t faces = 0;
   int facets = 0, degenerate = 0;
+};
+
+/// What the passes over the kept facets read.
+struct KeptFacets {
+  const Selection& selection;
+  const std::vector<Index>& cell_vertex;
+  const RayVertices& rays;
+  std::vector<std::uint32_t> index;  ///< the kept facets' positions in selection.selected
 };
 
 /// The vertex cycle of a kept facet around p → q: its cells' vertices (consecutive repeats after
@@ -201,128 +214,140 @@ void facet_cycle(const Selected& s, const Index* ring, const std::vector<Index>&
   while (cycle.size() > 1 && cycle.back() == cycle.front()) cycle.pop_back();
 }
 
-/// Adds a facet to its block: its boundary edges, then its fan triangles from the first vertex
-/// with their labels and fields (a facet collapsed to a point or a segment: the closure only).
-void add_facet(const Selected& s, const std::vector<Index>& cycle, const RayVertices& rays,
-               const std::vector<Index>& original, FacetBlock& out) {
+/// visit(block, facet, cycle) for every kept facet, in fixed blocks of kept facets (in order
+/// within a block; blocks in parallel).
+template <typename Visit>
+void for_kept_cycles(const KeptFacets& kept, bool parallel, const Visit& visit) {
+  services::for_blocks(kept.index.size(), kBlock, parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
+    std::vector<Index> cycle;
+    for (std::size_t j = begin; j < end; ++j) {
+      const Selected& s = kept.selection.selected[kept.index[j]];
+      facet_cycle(s, kept.selection.rings.data() + s.ring_begin, kept.cell_vertex, kept.rays, cycle);
+      visit(b, s, cycle);
+    }
+  });
+}
+
+/// A facet's boundary edges, then its fan triangles from the first vertex with their diagonals:
+/// edge(record) and face(triangle) in that order. A facet collapsed to a point or a segment is
+/// kept in the closure only: returns false.
+template <typename Edge, typename Face>
+bool emit_facet(const std::vector<Index>& cycle, const RayVertices& rays, const Edge& edge, const Face& face) {
   const std::size_t m = cycle.size();
   for (std::size_t k = 0; k < m && m > 1; ++k) {
     const Index a = cycle[k], c = cycle[(k + 1) % m];
     if (m == 2 && k == 1) break;  // a segment: one edge
-    if (a != c) out.edges.push_back({std::min(a, c), std::max(a, c), 0, rays.is_ray(a) || rays.is_ray(c)});
+    if (a != c) edge(EdgeRecord{std::min(a, c), std::max(a, c), 0, rays.is_ray(a) || rays.is_ray(c)});
   }
-  const int number = out.facets++;
-  if (m < 3) {  // collapsed to a point or a segment: kept in the closure only
-    ++out.degenerate;
-    return;
-  }
-  const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
-  const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
+  if (m < 3) return false;
   for (std::size_t k = 1; k + 1 < m; ++k) {
     const Index a = cycle[0], b2 = cycle[k], c = cycle[k + 1];
-    if (k >= 2 && a != b2)
-      out.edges.push_back({std::min(a, b2), std::max(a, b2), 1, rays.is_ray(a) || rays.is_ray(b2)});
+    if (k >= 2 && a != b2) edge(EdgeRecord{std::min(a, b2), std::max(a, b2), 1, rays.is_ray(a) || rays.is_ray(b2)});
     if (a == b2 || b2 == c || a == c) continue;  // a non-consecutive repeat after merging
-    out.faces.push_back({a, b2, c});
-    out.polygon.push_back(number);
-    out.p.push_back(static_cast<int>(original[s.p]));
-    out.q.push_back(static_cast<int>(original[s.q]));
-    out.conditions.push_back(s.bits);
-    out.unbounded.push_back(s.open ? 1 : 0);
-    out.angle.push_back(angle);
-    out.ratio.push_back(ratio);
+    face(Tri{a, b2, c});
   }
+  return true;
 }
 
-/// The kept facets, fan-triangulated, in blocks of kept facets (fixed blocks, in order).
-std::vector<FacetBlock> triangulate_facets(const Selection& selection, const std::vector<char>& keep,
-                                           const std::vector<Index>& cell_vertex, const RayVertices& rays,
-                                           const std::vector<Index>& original, bool parallel) {
-  std::vector<std::uint32_t> kept_facets;
-  for (std::size_t i = 0; i < selection.selected.size(); ++i)
-    if (keep[i]) kept_facets.push_back(static_cast<std::uint32_t>(i));
-  std::vector<FacetBlock> blocks(services::block_count(kept_facets.size(), kBlock));
-  services::for_blocks(kept_facets.size(), kBlock, parallel, [&](std::size_t b, std::size_t begin, std::size_t end) {
-    std::vector<Index> cycle;
-    for (std::size_t j = begin; j < end; ++j) {
-      const Selected& s = selection.selected[kept_facets[j]];
-      facet_cycle(s, selection.rings.data() + s.ring_begin, cell_vertex, rays, cycle);
-      add_facet(s, cycle, rays, original, blocks[b]);
-    }
+/// First pass: each block's facets and triangles, and each vertex's edge records (its cursor).
+std::vector<BlockCount> count_facets(const KeptFacets& kept, EdgeBuckets& buckets, bool parallel) {
+  std::vector<BlockCount> counts(services::block_count(kept.index.size(), kBlock));
+  for_kept_cycles(kept, parallel, [&](std::size_t b, const Selected&, const std::vector<Index>& cycle) {
+    BlockCount& count = counts[b];
+    ++count.facets;
+    const auto edge = [&](const EdgeRecord& e) { buckets.cursor[e.a].fetch_add(1, std::memory_order_relaxed); };
+    if (!emit_facet(cycle, kept.rays, edge, [&](const Tri&) { ++count.faces; })) ++count.degenerate;
   });
-  return blocks;
+  return counts;
 }
 
-/// The blocks concatenated in order (each emptied): their triangles with the face labels and
-/// fields into the complex, facet numbers made global; returns their edges, block by block.
-std::vector<std::vector<EdgeRecord>> gather_facets(std::vector<FacetBlock>& blocks, MedialComplex& medial,
-                                                   bool parallel, MedialReport& info) {
-  std::vector<std::size_t> face_offset(blocks.size() + 1, 0);
-  std::vector<int> facet_offset(blocks.size() + 1, 0);
-  for (std::size_t b = 0; b < blocks.size(); ++b) {
-    face_offset[b + 1] = face_offset[b] + blocks[b].faces.size();
-    facet_offset[b + 1] = facet_offset[b] + blocks[b].facets;
-    info.degenerate_facets += static_cast<std::size_t>(blocks[b].degenerate);
+/// The buckets' starts from the counts; each cursor set to its bucket's start.
+void open_buckets(EdgeBuckets& buckets, std::size_t nv) {
+  buckets.start.assign(nv + 1, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::size_t count = buckets.cursor[v].load(std::memory_order_relaxed);
+    buckets.start[v + 1] = buckets.start[v] + count;
+    buckets.cursor[v].store(buckets.start[v], std::memory_order_relaxed);
   }
-  info.facets = static_cast<std::size_t>(facet_offset.back());
-  // The faces first, then their columns at that size (add_face would grow each column per face).
-  medial.faces.resize(face_offset.back());
-  auto& polygon = medial.add(kPolygon);
-  auto& label_p = medial.add(kDualP);
-  auto& label_q = medial.add(kDualQ);
-  auto& label_conditions = medial.add(kConditions);
-  auto& label_unbounded = medial.add(kUnbounded);
-  auto& field_angle = medial.add(kAngle);
-  auto& field_ratio = medial.add(kRatio);
-  std::vector<std::vector<EdgeRecord>> edges(blocks.size());
-  const auto gather = [&](std::size_t b) {
-    FacetBlock& block = blocks[b];
-    const auto at = static_cast<std::ptrdiff_t>(face_offset[b]);
-    std::copy(block.faces.begin(), block.faces.end(), medial.faces.begin() + at);
-    std::transform(block.polygon.begin(), block.polygon.end(), polygon.begin() + at,
-                   [&](int local) { return facet_offset[b] + local; });
-    std::copy(block.p.begin(), block.p.end(), label_p.begin() + at);
-    std::copy(block.q.begin(), block.q.end(), label_q.begin() + at);
-    std::copy(block.conditions.begin(), block.conditions.end(), label_conditions.begin() + at);
-    std::copy(block.unbounded.begin(), block.unbounded.end(), label_unbounded.begin() + at);
-    std::copy(block.angle.begin(), block.angle.end(), field_angle.begin() + at);
-    std::copy(block.ratio.begin(), block.ratio.end(), field_ratio.begin() + at);
-    edges[b] = std::move(block.edges);
-    block = FacetBlock{};
-  };
-  if (parallel) tbb::parallel_for(std::size_t{0}, blocks.size(), gather);
-  else for (std::size_t b = 0; b < blocks.size(); ++b) gather(b);
-  return edges;
+  buckets.records.reset(new EdgeRecord[buckets.start[nv]]);  // default-initialised: not zero-filled
 }
 
-/// The edges (the blocks' in block order) bucketed by their lower vertex a (a counting sort,
-/// stable): bucket v holds bucketed[start[v], start[v + 1]).
-void bucket_edges(const std::vector<std::vector<EdgeRecord>>& edges, std::size_t nv,
-                  std::vector<EdgeRecord>& bucketed, std::vector<std::size_t>& start) {
-  start.assign(nv + 1, 0);
-  for (const auto& block : edges)
-    for (const EdgeRecord& e : block) ++start[e.a + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  bucketed.resize(start[nv]);
-  std::vector<std::size_t> cursor(start.begin(), start.end() - 1);
-  for (const auto& block : edges)
-    for (const EdgeRecord& e : block) bucketed[cursor[e.a]++] = e;
+/// Where a block's triangles and facet numbers start (the blocks in order).
+struct BlockStart {
+  std::size_t face = 0;
+  int facet = 0;
+};
+
+/// The triangles with their face labels and fields, at their final rows.
+struct FaceColumns {
+  std::vector<Tri>& faces;
+  std::vector<int>&polygon, &p, &q, &conditions, &unbounded;
+  std::vector<double>&angle, &ratio;
+};
+
+/// Second pass: each block's triangles and labels written from its start (the complex's face
+/// order is the blocks' order), its edge records scattered into their buckets.
+void write_facets(const KeptFacets& kept, std::vector<BlockStart> next, const std::vector<Index>& original,
+                  FaceColumns out, EdgeBuckets& buckets, bool parallel) {
+  for_kept_cycles(kept, parallel, [&](std::size_t b, const Selected& s, const std::vector<Index>& cycle) {
+    BlockStart& at = next[b];
+    const int number = at.facet++;
+    const double angle = std::asin(std::clamp(std::max(s.scores.sin_angle_p, s.scores.sin_angle_q), 0.0, 1.0));
+    const double ratio = std::max(s.scores.ratio_p, s.scores.ratio_q);
+    const auto edge = [&](const EdgeRecord& e) {
+      buckets.records[buckets.cursor[e.a].fetch_add(1, std::memory_order_relaxed)] = e;
+    };
+    emit_facet(cycle, kept.rays, edge, [&](const Tri& t) {
+      const std::size_t i = at.face++;
+      out.faces[i] = t;
+      out.polygon[i] = number;
+      out.p[i] = static_cast<int>(original[s.p]);
+      out.q[i] = static_cast<int>(original[s.q]);
+      out.conditions[i] = s.bits;
+      out.unbounded[i] = s.open ? 1 : 0;
+      out.angle[i] = angle;
+      out.ratio[i] = ratio;
+    });
+  });
+}
+
+/// The kept facets, fan-triangulated, into the complex (in blocks of kept facets, in order; facet
+/// numbers global), with their face labels and fields; returns their closure's edge records,
+/// bucketed. Two passes (count, then write at the counted rows): no per-block copies.
+EdgeBuckets add_facets(MedialComplex& medial, const KeptFacets& kept, const std::vector<Index>& original,
+                       bool parallel, MedialReport& info) {
+  EdgeBuckets buckets;
+  buckets.cursor = std::make_unique<std::atomic<std::size_t>[]>(medial.num_vertices());  // zeros
+  const std::vector<BlockCount> counts = count_facets(kept, buckets, parallel);
+  open_buckets(buckets, medial.num_vertices());
+  std::vector<BlockStart> starts(counts.size() + 1);
+  for (std::size_t b = 0; b < counts.size(); ++b) {
+    starts[b + 1] = {starts[b].face + counts[b].faces, starts[b].facet + counts[b].facets};
+    info.degenerate_facets += static_cast<std::size_t>(counts[b].degenerate);
+  }
+  info.facets = static_cast<std::size_t>(starts.back().facet);
+  // The faces first, then their columns at that size (add_face would grow each column per face).
+  medial.faces.resize(starts.back().face);
+  FaceColumns columns{medial.faces,        medial.add(kPolygon),   medial.add(kDualP),
+                      medial.add(kDualQ),  medial.add(kConditions), medial.add(kUnbounded),
+                      medial.add(kAngle),  medial.add(kRatio)};
+  write_facets(kept, std::move(starts), original, columns, buckets, parallel);
+  return buckets;
 }
 
 /// The closure's edges into the complex, sorted by (a, b), each once (a Voronoi edge bounds up
 /// to three selected facets; the first record of an (a, b) in EdgeRecord's order is kept), with
-/// their labels `fan_diagonal` and, when clipping, `clipped`: each (short) bucket of
-/// bucket_edges sorted and deduplicated, then written at its offset, in parallel.
-void add_edges(MedialComplex& medial, const std::vector<std::vector<EdgeRecord>>& edges, bool clip, bool parallel) {
+/// their labels `fan_diagonal` and, when clipping, `clipped`: each (short) bucket sorted and
+/// deduplicated, then written at its offset, in parallel.
+void add_edges(MedialComplex& medial, EdgeBuckets& buckets, bool clip, bool parallel) {
   const std::size_t nv = medial.num_vertices();
-  std::vector<EdgeRecord> bucketed;
-  std::vector<std::size_t> start;
-  bucket_edges(edges, nv, bucketed, start);
+  const std::vector<std::size_t>& start = buckets.start;
+  EdgeRecord* const records = buckets.records.get();
   std::vector<std::size_t> kept(nv + 1, 0);  // then: the offset of each bucket's edges
   services::for_blocks(nv, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      const auto first = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v]);
-      const auto last = bucketed.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+      EdgeRecord* const first = records + start[v];
+      EdgeRecord* const last = records + start[v + 1];
       std::sort(first, last);
       kept[v + 1] = static_cast<std::size_t>(
           std::unique(first, last, [](const EdgeRecord& x, const EdgeRecord& y) { return x.b == y.b; }) - first);
@@ -335,9 +360,9 @@ void add_edges(MedialComplex& medial, const std::vector<std::vector<EdgeRecord>>
   services::for_blocks(nv, kBlock, parallel, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
       for (std::size_t i = kept[v], k = start[v]; i < kept[v + 1]; ++i, ++k) {
-        medial.edges[i] = {bucketed[k].a, bucketed[k].b};
-        fan_diagonal[i] = bucketed[k].diagonal;
-        if (clipped) (*clipped)[i] = bucketed[k].clipped;
+        medial.edges[i] = {records[k].a, records[k].b};
+        fan_diagonal[i] = records[k].diagonal;
+        if (clipped) (*clipped)[i] = records[k].clipped;
       }
   });
 }
@@ -354,9 +379,10 @@ MedialComplex build_complex(const Renumbered& points, const DelaunayTetrahedrali
   medial.generator_kind = options.generator_kind;
   add_cell_vertices(medial, cells, dt, points.original, options.parallel);
   const RayVertices rays = add_ray_vertices(medial, selection, keep, dt, points, options.clip_factor * diagonal);
-  std::vector<FacetBlock> blocks = triangulate_facets(selection, keep, cells.of_cell, rays, points.original,
-                                                      options.parallel);
-  const std::vector<std::vector<EdgeRecord>> edges = gather_facets(blocks, medial, options.parallel, info);
+  KeptFacets kept{selection, cells.of_cell, rays, {}};
+  for (std::size_t i = 0; i < selection.selected.size(); ++i)
+    if (keep[i]) kept.index.push_back(static_cast<std::uint32_t>(i));
+  EdgeBuckets edges = add_facets(medial, kept, points.original, options.parallel, info);
   add_edges(medial, edges, options.unbounded == Unbounded::Clip, options.parallel);
   return medial;
 }

@@ -230,7 +230,7 @@ std::vector<char> keep_inner(InnerSelection inner, const Renumbered& points, con
                              const std::vector<char>& cell_inside, const InnerSetup& setup,
                              const DelaunayTetrahedralization& dt, bool parallel) {
   const std::vector<Vec3>& P = points.P;
-  const std::vector<Selected>& selected = selection.selected;
+  const FreshArray<Selected>& selected = selection.selected;
   std::vector<char> keep(selected.size(), 1);
   switch (inner) {
     case InnerSelection::DelaunaySurface:

@@ -6,6 +6,9 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <type_traits>
 #include <vector>
 
 namespace medax::dey_zhao {
@@ -57,10 +60,35 @@ struct Selected {
   std::int64_t first_ray = -1, last_ray = -1;  ///< open: hull facet (cell·4 + k) at the ring's front and back
 };
 
+/// A fixed-size array of a trivially copyable type whose storage is not initialised on
+/// allocation: the caller constructs every element, and those writes (by parallel blocks) are
+/// the pages' first touch, instead of one thread zero-filling a large fresh array first.
+template <typename T>
+class FreshArray {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+  struct Free {
+    std::size_t n = 0;
+    void operator()(T* p) const { std::allocator<T>().deallocate(p, n); }
+  };
+
+ public:
+  FreshArray() = default;
+  explicit FreshArray(std::size_t n) : data_(std::allocator<T>().allocate(n), Free{n}), size_(n) {}
+  /// Constructs element i as a copy of `value` (each element exactly once).
+  void construct(std::size_t i, const T& value) { ::new (static_cast<void*>(data_.get() + i)) T(value); }
+  std::size_t size() const { return size_; }
+  const T* data() const { return data_.get(); }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+
+ private:
+  std::unique_ptr<T[], Free> data_;
+  std::size_t size_ = 0;
+};
+
 /// The selected edges, in block order, with the rings of cells around them.
 struct Selection {
-  std::vector<Selected> selected;
-  std::vector<Index> rings;  ///< selected[i]'s ring: ring_size cells from ring_begin
+  FreshArray<Selected> selected;
+  FreshArray<Index> rings;  ///< selected[i]'s ring: ring_size cells from ring_begin
 };
 
 /// D–E. The conditions on every edge, from the lowest cell of its ring; rings of the selected.

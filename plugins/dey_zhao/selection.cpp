@@ -188,7 +188,8 @@ void select_block(const std::vector<Vec3>& P, const std::vector<Index>& original
 }
 
 /// The blocks' selections concatenated in block order (each block emptied; copied in
-/// parallel at offsets fixed beforehand), and their counts.
+/// parallel at offsets fixed beforehand, into arrays that are not zero-filled first), and their
+/// counts.
 Selection concatenate(std::vector<SelectionBlock>& blocks, bool parallel, MedialReport& info) {
   std::vector<std::size_t> selected_at(blocks.size() + 1, 0), ring_at(blocks.size() + 1, 0);
   for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -200,17 +201,15 @@ Selection concatenate(std::vector<SelectionBlock>& blocks, bool parallel, Medial
     info.unbounded_dropped += blocks[b].dropped;
     info.selected += blocks[b].selected.size() + blocks[b].dropped;
   }
-  Selection out;
-  out.selected.resize(selected_at.back());
-  out.rings.resize(ring_at.back());
+  Selection out{FreshArray<Selected>(selected_at.back()), FreshArray<Index>(ring_at.back())};
   services::for_blocks(blocks.size(), 1, parallel, [&](std::size_t b, std::size_t, std::size_t) {
     const auto shift = static_cast<std::uint32_t>(ring_at[b]);
     for (std::size_t i = 0; i < blocks[b].selected.size(); ++i) {
       Selected s = blocks[b].selected[i];
       s.ring_begin += shift;
-      out.selected[selected_at[b] + i] = s;
+      out.selected.construct(selected_at[b] + i, s);
     }
-    std::copy(blocks[b].rings.begin(), blocks[b].rings.end(), out.rings.begin() + static_cast<std::ptrdiff_t>(ring_at[b]));
+    for (std::size_t i = 0; i < blocks[b].rings.size(); ++i) out.rings.construct(ring_at[b] + i, blocks[b].rings[i]);
     blocks[b] = SelectionBlock{};
   });
   return out;

@@ -74,7 +74,7 @@ class FreshArray {
  public:
   FreshArray() = default;
   explicit FreshArray(std::size_t n) : data_(std::allocator<T>().allocate(n), Free{n}), size_(n) {}
-  /// Constructs element i as a copy of `value` (each element exactly once).
+  /// Constructs element i as a copy of `value` (each element before it is read; again to replace it).
   void construct(std::size_t i, const T& value) { ::new (static_cast<void*>(data_.get() + i)) T(value); }
   std::size_t size() const { return size_; }
   const T* data() const { return data_.get(); }

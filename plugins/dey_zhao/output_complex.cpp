@@ -74,13 +74,13 @@ std::optional<UnionFind> merge_close_cells(const RingScan& scan) {
 
 /// The output vertices of the cells.
 struct CellVertices {
-  std::vector<Index> of_cell;  ///< per cell: its vertex (a merged cell: its class's), kNone if unused
-  std::vector<Index> cell;     ///< per vertex: its cell
+  FreshArray<Index> of_cell;  ///< per cell: its vertex (a merged cell: its class's), kNone if unused
+  FreshArray<Index> cell;     ///< per vertex: its cell
 };
 
 /// Vertex numbering: the used cells in cell order, each merge class numbered once (by its
 /// lowest cell, one of the used cells, which stands for the others). Blocks count their cells,
-/// then number them from their offsets, in parallel.
+/// then number them from their offsets, in parallel (the arrays' first touch).
 CellVertices number_cells(RingScan& scan, std::optional<UnionFind>& classes, bool parallel, MedialReport& info) {
   const std::size_t n = scan.cells;
   const auto used = [&](std::size_t c) { return scan.used[c].load(std::memory_order_relaxed) != 0; };
@@ -97,15 +97,15 @@ CellVertices number_cells(RingScan& scan, std::optional<UnionFind>& classes, boo
     for (std::size_t c = begin; c < end; ++c) offset[block + 1] += used(c);
   });
   for (std::size_t b = 0; b + 1 < offset.size(); ++b) offset[b + 1] += offset[b];
-  CellVertices out;
-  out.of_cell.assign(n, kNone);
-  out.cell.resize(offset.back());
+  CellVertices out{FreshArray<Index>(n), FreshArray<Index>(offset.back())};
   services::for_blocks(n, kBlock, parallel, [&](std::size_t block, std::size_t begin, std::size_t end) {
     auto v = static_cast<Index>(offset[block]);
-    for (std::size_t c = begin; c < end; ++c)
-      if (used(c)) out.of_cell[c] = v, out.cell[v++] = static_cast<Index>(c);
+    for (std::size_t c = begin; c < end; ++c) {
+      out.of_cell.construct(c, used(c) ? v : kNone);
+      if (used(c)) out.cell.construct(v++, static_cast<Index>(c));
+    }
   });
-  for (Index c : merged) out.of_cell[c] = out.of_cell[classes->find(c)];
+  for (Index c : merged) out.of_cell.construct(c, out.of_cell[classes->find(c)]);
   return out;
 }
 
@@ -195,14 +195,14 @@ struct BlockCount {
 /// What the passes over the kept facets read.
 struct KeptFacets {
   const Selection& selection;
-  const std::vector<Index>& cell_vertex;
+  const FreshArray<Index>& cell_vertex;
   const RayVertices& rays;
   std::vector<std::uint32_t> index;  ///< the kept facets' positions in selection.selected
 };
 
 /// The vertex cycle of a kept facet around p → q: its cells' vertices (consecutive repeats after
 /// merging dropped), between its two ray ends when it is open.
-void facet_cycle(const Selected& s, const Index* ring, const std::vector<Index>& cell_vertex, const RayVertices& rays,
+void facet_cycle(const Selected& s, const Index* ring, const FreshArray<Index>& cell_vertex, const RayVertices& rays,
                  std::vector<Index>& cycle) {
   cycle.clear();
   if (s.open) cycle.push_back(rays.of(s.first_ray));

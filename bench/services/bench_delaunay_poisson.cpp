@@ -1,8 +1,9 @@
 // The two costs every Voronoi method pays at scale (issue 16), on koala.obj:
 // - poisson/<n>: Poisson-disk sampling of n points by count (the `sample` stage), seed 1;
+// - poisson_darts/<n>: the same from candidates thinned by dart throwing (`candidates: darts`);
 // - delaunay/<n>/threads:<t>: the shared Delaunay service on n cached Poisson samples, with t
 //   TBB threads (tbb::global_control).
-// Targets (issue 16, Release, 2 cores): Poisson 1M <= 5 s, Delaunay 1M <= 5 s.
+// Targets (issue 16, Release, 2 cores): Poisson 1M <= 5 s (met by poisson_darts), Delaunay 1M <= 5 s.
 //
 //   build-bench/bin/bench_delaunay_poisson [--benchmark_filter=1M] [--meshes DIR]
 //
@@ -69,9 +70,14 @@ std::uint64_t samples_hash(const OrientedSamples& s) {
   return h;
 }
 
+/// The benchmark's name for the elimination's candidates.
+const char* name(services::PoissonCandidates candidates) {
+  return candidates == services::PoissonCandidates::Uniform ? "poisson" : "poisson_darts";
+}
+
 std::string tag(std::size_t n) { return n >= 1000000 ? std::to_string(n / 1000000) + "M" : std::to_string(n / 1000) + "k"; }
 
-void BM_Poisson(benchmark::State& state, std::size_t n, int threads) {
+void BM_Poisson(benchmark::State& state, std::size_t n, int threads, services::PoissonCandidates candidates) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   const SurfaceMesh& mesh = bench::koala(meshes_dir);
   Timing time;
@@ -80,7 +86,9 @@ void BM_Poisson(benchmark::State& state, std::size_t n, int threads) {
   for (auto _ : state) {
     std::mt19937_64 rng(1);
     OrientedSamples s;
-    time.measure([&] { s = services::sample_poisson_count(mesh, n, rng); });
+    services::PoissonDiskOptions options;
+    options.candidates = candidates;
+    time.measure([&] { s = services::sample_poisson_count(mesh, n, rng, options); });
     state.PauseTiming();
     min_distance = services::min_sample_distance(s) / services::poisson_packing_distance(services::surface_area(mesh), n);
     hash = samples_hash(s);
@@ -88,9 +96,9 @@ void BM_Poisson(benchmark::State& state, std::size_t n, int threads) {
   }
   time.report(state);
   state.counters["min_dist/packing"] = min_distance;
-  std::printf("poisson/%s/threads:%d: wall %.3f s, cpu %.3f s, busiest thread %.3f s (target 1M <= 5 s); "
+  std::printf("%s/%s/threads:%d: wall %.3f s, cpu %.3f s, busiest thread %.3f s (target 1M <= 5 s); "
               "minimum distance %.3f of the hexagonal packing's; samples hash %016llx\n",
-              tag(n).c_str(), threads, time.wall, time.cpu, time.busiest, min_distance,
+              name(candidates), tag(n).c_str(), threads, time.wall, time.cpu, time.busiest, min_distance,
               static_cast<unsigned long long>(hash));
 }
 
@@ -125,8 +133,10 @@ int main(int argc, char** argv) {
     const int reps = n >= 1000000 ? 1 : 3;
     for (int threads : {1, 2}) {
       const std::string suffix = tag(n) + "/threads:" + std::to_string(threads);
-      benchmark::RegisterBenchmark(("poisson/" + suffix).c_str(), BM_Poisson, n, threads)
-          ->Unit(benchmark::kSecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(reps);
+      for (const auto candidates : {services::PoissonCandidates::Uniform, services::PoissonCandidates::Darts})
+        benchmark::RegisterBenchmark((std::string(name(candidates)) + "/" + suffix).c_str(), BM_Poisson, n, threads,
+                                     candidates)
+            ->Unit(benchmark::kSecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(reps);
       benchmark::RegisterBenchmark(("delaunay/" + suffix).c_str(), BM_Delaunay, n, threads)
           ->Unit(benchmark::kSecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(reps);
     }

@@ -74,6 +74,11 @@ Vec3 CellGrid::corner(std::size_t c) const {
   return lo_ + side_ * Vec3(static_cast<double>(at[0]), static_cast<double>(at[1]), static_cast<double>(at[2]));
 }
 
+int CellGrid::phase(std::size_t c) const {
+  const auto at = coordinates(c);
+  return static_cast<int>(9 * (at[0] % 3) + 3 * (at[1] % 3) + at[2] % 3);
+}
+
 std::array<std::int64_t, 3> CellGrid::coordinates(std::size_t c) const {
   const std::uint64_t k = keys_[c], mask = kAxisCells - 1;
   return {static_cast<std::int64_t>(k >> (2 * kBits)), static_cast<std::int64_t>((k >> kBits) & mask),

@@ -41,6 +41,10 @@ class CellGrid {
   std::vector<std::uint32_t> within(std::size_t c, int reach) const;
   /// The lowest corner of cell c.
   Vec3 corner(std::size_t c) const;
+  /// Cell c's phase in 0..26, from its coordinates modulo 3: two cells of one phase are at least
+  /// two cells apart along some axis, so no point of one is within a cell side of a point of the
+  /// other.
+  int phase(std::size_t c) const;
 
  private:
   /// Calls f(cell or kNone) for the cells at most `reach` away from cell c along each axis.

@@ -16,11 +16,15 @@ enum class SampleMethod { Uniform, Poisson, Vertices };
 inline const std::vector<std::pair<std::string, SampleMethod>> kSampleMethods{
     {"poisson", SampleMethod::Poisson}, {"uniform", SampleMethod::Uniform}, {"vertices", SampleMethod::Vertices}};
 
+/// The name of each choice of the elimination's candidates, as the `candidates` parameter spells it.
+inline const std::vector<std::pair<std::string, services::PoissonCandidates>> kPoissonCandidates{
+    {"uniform", services::PoissonCandidates::Uniform}, {"darts", services::PoissonCandidates::Darts}};
+
 struct SampleSettings {
   SampleMethod method = SampleMethod::Poisson;
   std::size_t count = 10000;  ///< uniform, and poisson when min_distance is 0
   double min_distance = 0;    ///< poisson: > 0 samples by radius instead of by count
-  services::PoissonDiskOptions poisson;  ///< poisson: oversampling, normal angle
+  services::PoissonDiskOptions poisson;  ///< poisson: oversampling, candidates, normal angle
 };
 
 /// Throws std::invalid_argument for an empty or zero-area mesh.

@@ -1,8 +1,9 @@
 // Poisson-disk sampling service: exact count, minimum distances, coverage, areas, determinism
-// (across seeds and thread counts).
+// (across seeds and thread counts); the dart-thrown candidates; the uniform samples' face search.
 #include "conditioning_test_support.hpp"
 // Private to the service: the areas with a chosen grid, to compare its two searches.
 #include "../../framework/services/poisson_areas.hpp"
+#include "../../framework/services/poisson_darts.hpp"
 
 #include <medax/services/closest_point.hpp>
 #include <medax/services/kdtree.hpp>
@@ -10,6 +11,9 @@
 #include <medax/services/sampling.hpp>
 #include <medax/testing/shapes.hpp>
 
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -253,5 +257,110 @@ TEST_CASE("Poisson-disk areas: the grid search gives the k-d tree's areas bit fo
   for (double cells : {2.0, 4.0}) {
     INFO(cells << " spacings");
     CHECK(poisson_detail::tangent_voronoi_areas(s, area, bound, rule, cells) == kdtree);
+  }
+}
+
+TEST_CASE("Uniform samples: the face guide table picks the faces a binary search picks", "[sampling]") {
+  // sample_uniform finds each draw's face through buckets of cumulative area; the reference
+  // draws the same numbers and runs std::upper_bound over all faces. Meshes with faces of very
+  // different areas (fandisk) and many small ones (a fine sphere).
+  for (const SurfaceMesh& mesh : {read_mesh(test::corpus_mesh("fandisk.off")), testing::make_sphere(1.0, 5)}) {
+    std::vector<double> cumulative = face_areas(mesh);
+    std::partial_sum(cumulative.begin(), cumulative.end(), cumulative.begin());
+    std::mt19937_64 rng(17), reference_rng(17);
+    const std::size_t n = 20000;
+    const OrientedSamples s = sample_uniform(mesh, n, rng);
+    std::size_t same = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      double draw[3];
+      for (double& x : draw) x = static_cast<double>(reference_rng() >> 11) * 0x1.0p-53;
+      const auto f = std::min<std::size_t>(
+          static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), draw[0] * cumulative.back()) -
+                                   cumulative.begin()),
+          mesh.faces.size() - 1);
+      double u = draw[1], v = draw[2];
+      if (u + v > 1) u = 1 - u, v = 1 - v;
+      const auto& [a, b, c] = mesh.faces[f];
+      const Vec3 p =
+          mesh.vertices[a] + u * (mesh.vertices[b] - mesh.vertices[a]) + v * (mesh.vertices[c] - mesh.vertices[a]);
+      same += p == s.points[k];
+    }
+    CHECK(same == n);
+  }
+}
+
+TEST_CASE("Dart throwing over grid phases: separated, maximal, the same with any thread count", "[sampling]") {
+  // Candidates on a torus (curved, normals opposite across its hole) and fandisk (creases); every
+  // pair checked by brute force.
+  const poisson_detail::NormalRule rule(120.0);
+  for (const SurfaceMesh& mesh : {testing::make_torus(1.0, 0.3, 32, 16), read_mesh(test::corpus_mesh("fandisk.off"))}) {
+    std::mt19937_64 rng(4);
+    const OrientedSamples candidates = sample_uniform(mesh, 6000, rng);
+    const double radius = 0.6 * poisson_packing_distance(surface_area(mesh), 1000);
+    const poisson_detail::DartThrower darts(candidates.points, candidates.normals, 4 * radius);
+    const std::vector<Index> kept = darts.kept(radius, rule);
+    REQUIRE(std::is_sorted(kept.begin(), kept.end()));
+    std::vector<bool> is_kept(candidates.size(), false);
+    for (Index i : kept) is_kept[i] = true;
+    const auto repel = [&](std::size_t i, std::size_t j) {
+      return (candidates.points[i] - candidates.points[j]).squaredNorm() < radius * radius &&
+             rule.agree(candidates.normals[i], candidates.normals[j]);
+    };
+    std::size_t too_close = 0, uncovered = 0;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      bool covered = is_kept[i];
+      for (Index j : kept) {
+        if (j == i || !repel(i, j)) continue;
+        too_close += is_kept[i];
+        covered = true;
+      }
+      uncovered += !covered;
+    }
+    CHECK(too_close == 0);
+    CHECK(uncovered == 0);
+    CHECK(kept.size() > 500);
+    for (int threads : {1, 2, 4}) {
+      tbb::task_arena arena(threads);
+      CHECK(arena.execute([&] { return darts.kept(radius, rule); }) == kept);
+    }
+    // A smaller radius from the same grid keeps more.
+    CHECK(darts.kept(0.8 * radius, rule).size() > kept.size());
+  }
+}
+
+TEST_CASE("Poisson-disk from dart-thrown candidates: exact count, blue noise, coverage, thread-independent",
+          "[sampling]") {
+  // candidates: darts. The darts keep 0.55 spacings by construction; the elimination keeps at
+  // least that (measured 0.61 here against the uniform candidates' 0.68-0.70). No holes: every
+  // probe within 1.1 spacings of a sample (measured 1.03-1.04 here, against the uniform
+  // candidates' 0.93-0.95; uniform random samples leave holes of several spacings).
+  for (const auto& path : {test::data_dir() / "sphere.obj", test::corpus_mesh("fandisk.off"),
+                           test::corpus_mesh("turbine.off")}) {
+    INFO(path.filename().string());
+    const SurfaceMesh mesh = read_mesh(path);
+    const std::size_t n = 3000;
+    const double spacing = poisson_packing_distance(surface_area(mesh), n);
+    OrientedSamples runs[2];
+    for (int threads : {1, 2}) {
+      std::mt19937_64 rng(7);
+      PoissonDiskOptions options;
+      options.candidates = PoissonCandidates::Darts;
+      options.max_threads = threads;
+      runs[threads - 1] = sample_poisson_count(mesh, n, rng, options);
+    }
+    const OrientedSamples& s = runs[0];
+    REQUIRE(s.size() == n);
+    check_on_surface(mesh, s);
+    CHECK(runs[1].points == s.points);
+    CHECK(runs[1].areas == s.areas);
+    const double min_distance = min_sample_distance(s);
+    INFO("minimum distance " << min_distance / spacing << " spacings");
+    CHECK(min_distance >= 0.55 * spacing);
+    std::mt19937_64 probe_rng(99);
+    const PointIndex index(s.points);
+    double farthest = 0;
+    for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points) farthest = std::max(farthest, index.nearest(p).second);
+    INFO("farthest probe " << farthest / spacing << " spacings from a sample");
+    CHECK(farthest <= 1.1 * spacing);
   }
 }

@@ -4,7 +4,8 @@
 // Both methods start from dense uniform area-weighted candidates (sample_uniform), so they are
 // deterministic for a given generator state, whatever the number of threads:
 // - by count: weighted sample elimination (Yuksel 2015, "Sample Elimination for Generating
-//   Poisson Disk Sample Sets", Eurographics), which returns exactly `count` samples;
+//   Poisson Disk Sample Sets", Eurographics), which returns exactly `count` samples, from the
+//   uniform candidates or (faster) from those candidates thinned by parallel dart throwing;
 // - by radius: dart throwing over the candidates in their random order, which returns a
 //   (nearly maximal) set in which no two samples are closer than `radius`.
 // Neighbour searches go through a spatial hash grid, in parallel (TBB); the elimination itself
@@ -18,12 +19,25 @@
 
 namespace medax::services {
 
+/// What the elimination by count starts from.
+enum class PoissonCandidates {
+  /// Yuksel's: `oversampling` × count uniform candidates.
+  Uniform,
+  /// Those candidates thinned first by dart throwing at 0.55 packing spacings, in parallel over
+  /// grid phases (about 1.3 × count remain, at least 1.1 ×), then eliminated: about three times
+  /// faster at a million samples, a minimum distance of at least 0.55 spacings by construction
+  /// (0.61 measured against Uniform's 0.69), other samples than Uniform's.
+  Darts,
+};
+
 struct PoissonDiskOptions {
   /// Uniform candidates drawn per output sample (by count) or per sample of a hexagonal
   /// packing at `radius` (by radius). Yuksel uses 5 for surfaces.
   double oversampling = 5.0;
   /// Samples whose normals differ by this angle or more never repel each other (degrees).
   double normal_angle_deg = 120.0;
+  /// By count: the elimination's candidates (by radius: always the uniform ones).
+  PoissonCandidates candidates = PoissonCandidates::Uniform;
   /// When > 0, at most this many threads (a TBB arena of that size); 0: TBB's default.
   int max_threads = 0;
 };

@@ -123,7 +123,7 @@ void SampleStage::declare(ParamBinder& p) {
   p.add("oversampling", settings_.poisson.oversampling, "poisson: uniform candidates drawn per sample").range(1, 100);
   p.add("candidates", settings_.poisson.candidates, kPoissonCandidates,
         "poisson by count: what the elimination starts from: uniform (Yuksel's); darts: the uniform candidates "
-        "thinned first by parallel dart throwing at 0.55 spacings (about 3x faster at 1M, other samples)");
+        "thinned first by parallel dart throwing at 0.65 spacings (about 3x faster at 1M, other samples)");
   p.add("normal_angle", settings_.poisson.normal_angle_deg,
         "poisson: samples whose normals differ by this much never repel (the two sides of a thin plate are "
         "sampled independently)")

@@ -330,10 +330,11 @@ TEST_CASE("Dart throwing over grid phases: separated, maximal, the same with any
 
 TEST_CASE("Poisson-disk from dart-thrown candidates: exact count, blue noise, coverage, thread-independent",
           "[sampling]") {
-  // candidates: darts. The darts keep 0.55 spacings by construction; the elimination keeps at
-  // least that (measured 0.61 here against the uniform candidates' 0.68-0.70). No holes: every
-  // probe within 1.1 spacings of a sample (measured 1.03-1.04 here, against the uniform
-  // candidates' 0.93-0.95; uniform random samples leave holes of several spacings).
+  // candidates: darts. The samples keep the darts' radius: 0.65 spacings, or a little less where
+  // the candidates do not give `count` darts there (measured 0.65 on sphere, 0.64 on fandisk and
+  // turbine, against the uniform candidates' 0.68-0.70). No holes: every probe within 1.05
+  // spacings of a sample (measured 0.94-1.00, against the uniform candidates' 0.93-0.95; uniform
+  // random samples leave holes of several spacings).
   for (const auto& path : {test::data_dir() / "sphere.obj", test::corpus_mesh("fandisk.off"),
                            test::corpus_mesh("turbine.off")}) {
     INFO(path.filename().string());
@@ -355,12 +356,12 @@ TEST_CASE("Poisson-disk from dart-thrown candidates: exact count, blue noise, co
     CHECK(runs[1].areas == s.areas);
     const double min_distance = min_sample_distance(s);
     INFO("minimum distance " << min_distance / spacing << " spacings");
-    CHECK(min_distance >= 0.55 * spacing);
+    CHECK(min_distance >= 0.6 * spacing);
     std::mt19937_64 probe_rng(99);
     const PointIndex index(s.points);
     double farthest = 0;
     for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points) farthest = std::max(farthest, index.nearest(p).second);
     INFO("farthest probe " << farthest / spacing << " spacings from a sample");
-    CHECK(farthest <= 1.1 * spacing);
+    CHECK(farthest <= 1.05 * spacing);
   }
 }

@@ -136,20 +136,14 @@ bool grid_nearest(const CellGrid& grid, const std::vector<Vec3>& at, std::size_t
   return true;
 }
 
-template <typename T>
-std::vector<T> gather(const std::vector<T>& values, const std::vector<Index>& order) {
-  std::vector<T> out(order.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) { out[k] = values[order[k]]; });
-  return out;
-}
-
 /// The unscaled cell areas, through the grid; the samples the grid cannot vouch for are listed
 /// in `left` (ascending).
 std::vector<double> grid_cell_areas(const OrientedSamples& samples, double cell_side, double bound,
                                     const NormalRule& rule, std::vector<Index>& left) {
   const std::size_t count = std::min(kNearest, samples.size());
   const CellGrid grid(samples.points, cell_side);
-  const std::vector<Vec3> at = gather(samples.points, grid.order()), normal = gather(samples.normals, grid.order());
+  const std::vector<Vec3> at = in_grid_order(samples.points, grid.order()),
+                          normal = in_grid_order(samples.normals, grid.order());
   const Polygon start = disk(bound);
   std::vector<double> areas(samples.size(), 0.0);
   std::mutex left_mutex;

@@ -49,13 +49,6 @@ class KeptAround {
   std::vector<Index> position_;
 };
 
-template <typename T>
-std::vector<T> in_grid_order(const std::vector<T>& values, const std::vector<Index>& order) {
-  std::vector<T> out(order.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) { out[k] = values[order[k]]; });
-  return out;
-}
-
 }  // namespace
 
 /// The grid, the points and normals in its order, and its cells by phase.

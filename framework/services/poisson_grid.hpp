@@ -4,6 +4,8 @@
 // points listed cell by cell, so a search that walks the cells in order reads nearby memory.
 #include <medax/geometry.hpp>
 
+#include <tbb/parallel_for.h>
+
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -71,5 +73,13 @@ class CellGrid {
   int shift_ = 60;
   std::size_t mask_ = 15;
 };
+
+/// values[order[k]] at position k, gathered in parallel: per-point data in a grid's order.
+template <typename T>
+std::vector<T> in_grid_order(const std::vector<T>& values, const std::vector<Index>& order) {
+  std::vector<T> out(order.size());
+  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) { out[k] = values[order[k]]; });
+  return out;
+}
 
 }  // namespace medax::services::poisson_detail

@@ -119,13 +119,6 @@ void fill_rows(const CellGrid& grid, const Neighbourhoods& around, const Surroun
   });
 }
 
-template <typename T>
-std::vector<T> gather(const std::vector<T>& values, const std::vector<Index>& order) {
-  std::vector<T> out(order.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) { out[k] = values[order[k]]; });
-  return out;
-}
-
 }  // namespace
 
 NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vector<Vec3>& normals, double radius,
@@ -135,7 +128,7 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
   if (points.empty()) return out;
   const CellGrid grid(points, radius);
   out.original = grid.order();
-  const std::vector<Vec3> at = gather(points, out.original), normal = gather(normals, out.original);
+  const std::vector<Vec3> at = in_grid_order(points, out.original), normal = in_grid_order(normals, out.original);
   // Two passes over the cells, the rows' lengths and then the rows in place: the rows are written
   // once, where they stay (no per-block copies of them to gather).
   const Surroundings search(at, normal, radius, rule);

@@ -141,7 +141,11 @@ void SampleStage::condition(Shape& shape, Context& ctx) {
   shape.samples = sample_surface(shape.mesh, settings_, ctx.rng());
   std::ostringstream log;
   log.precision(4);
-  log << "took " << shape.samples.size() << " samples (" << choice_name(kSampleMethods, settings_.method) << ")";
+  log << "took " << shape.samples.size() << " samples (" << choice_name(kSampleMethods, settings_.method);
+  if (settings_.method == SampleMethod::Poisson && settings_.min_distance == 0 &&
+      settings_.poisson.candidates == services::PoissonCandidates::Darts)
+    log << ", from dart-thrown candidates";
+  log << ")";
   if (settings_.method == SampleMethod::Poisson) {
     const double spacing = services::poisson_packing_distance(services::surface_area(shape.mesh), shape.samples.size());
     const double d = services::min_sample_distance(shape.samples, settings_.poisson.normal_angle_deg);

@@ -288,6 +288,16 @@ TEST_CASE("sample: Poisson-disk respects its minimum distance", "[stages]") {
     CHECK(services::min_sample_distance(s) >= 0.6 * services::poisson_packing_distance(area, 4000));
     CHECK(ctx.logged("minimum distance"));
   }
+  SECTION("by count from dart-thrown candidates: exact count, at least 0.6 of the packing spacing") {
+    auto darts = test::make_stage("sample", {{"count", 4000LL}, {"candidates", std::string("darts")}});
+    auto uniform = test::make_stage("sample", {{"count", 4000LL}});
+    test::RecordingContext ctx(1), uniform_ctx(1);
+    const auto s = test::run_stage(*darts, shape, ctx).shape.samples;
+    CHECK(s.size() == 4000);
+    CHECK(services::min_sample_distance(s) >= 0.6 * services::poisson_packing_distance(area, 4000));
+    CHECK(ctx.logged("dart-thrown candidates"));
+    CHECK(s.points != test::run_stage(*uniform, shape, uniform_ctx).shape.samples.points);
+  }
   SECTION("by radius: no two samples closer than min_distance") {
     const double r = 0.01;
     auto stage = test::make_stage("sample", {{"min_distance", r}});

@@ -10,6 +10,8 @@
 #include "poisson_neighbours.hpp"
 #include "poisson_queue.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -182,33 +184,47 @@ OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, st
   return with_threads(options.max_threads, [&] { return poisson_by_radius(mesh, radius, rng, options); });
 }
 
-double min_sample_distance(const OrientedSamples& samples, double normal_angle_deg) {
+namespace {
+
+/// The distance from sample i to its nearest sample with an agreeing normal, when that is below
+/// `below` (otherwise any value >= below): the k nearest first, then a search within `below`,
+/// then (with nothing to bound it) all samples.
+double nearest_agreeing(const OrientedSamples& samples, const PointIndex& index, const NormalRule& rule,
+                        std::size_t i, double below) {
+  constexpr std::size_t kNearest = 16;
+  const auto near = index.k_nearest(samples.points[i], std::min(kNearest, samples.size()));
+  for (const auto& [j, d] : near)
+    if (j != i && rule.agree(samples.normals[i], samples.normals[j])) return d;  // the list is sorted
+  if (near.size() == samples.size()) return std::numeric_limits<double>::infinity();
   double best = std::numeric_limits<double>::infinity();
-  if (samples.size() < 2) return best;
-  const NormalRule rule(normal_angle_deg);
-  const PointIndex index(samples.points);
-  const std::size_t k = std::min<std::size_t>(32, samples.size());
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const auto near = index.k_nearest(samples.points[i], k);
-    bool found = false;
-    for (const auto& [j, d] : near)
-      if (j != i && rule.agree(samples.normals[i], samples.normals[j])) {
-        best = std::min(best, d);  // the nearest agreeing sample: the list is sorted
-        found = true;
-        break;
-      }
-    if (found || near.size() == samples.size()) continue;
-    // The nearest agreeing sample lies beyond the k nearest.
-    if (std::isfinite(best)) {
-      for (const auto& [j, d] : index.within(samples.points[i], best))
-        if (j != i && rule.agree(samples.normals[i], samples.normals[j])) best = std::min(best, d);
-    } else {
-      for (std::size_t j = 0; j < samples.size(); ++j)
-        if (j != i && rule.agree(samples.normals[i], samples.normals[j]))
-          best = std::min(best, (samples.points[i] - samples.points[j]).norm());
-    }
+  if (std::isfinite(below)) {
+    for (const auto& [j, d] : index.within(samples.points[i], below))
+      if (j != i && rule.agree(samples.normals[i], samples.normals[j])) best = std::min(best, d);
+  } else {
+    for (std::size_t j = 0; j < samples.size(); ++j)
+      if (j != i && rule.agree(samples.normals[i], samples.normals[j]))
+        best = std::min(best, (samples.points[i] - samples.points[j]).norm());
   }
   return best;
+}
+
+}  // namespace
+
+double min_sample_distance(const OrientedSamples& samples, double normal_angle_deg) {
+  const double none = std::numeric_limits<double>::infinity();
+  if (samples.size() < 2) return none;
+  const NormalRule rule(normal_angle_deg);
+  const PointIndex index(samples.points);
+  // The minimum is exact whatever the split: a block's bound only ever skips samples whose
+  // nearest agreeing sample lies farther than a distance already found.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, samples.size()), none,
+      [&](const tbb::blocked_range<std::size_t>& range, double best) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+          best = std::min(best, nearest_agreeing(samples, index, rule, i, best));
+        return best;
+      },
+      [](double a, double b) { return std::min(a, b); });
 }
 
 }  // namespace medax::services

@@ -53,12 +53,24 @@ void prefetch_row(const poisson_detail::NeighbourGraph& near, Index i) {
   __builtin_prefetch(&near.value[last - 1]);
 }
 
+/// Reports progress when asked to (PoissonDiskOptions::progress).
+void report(const PoissonDiskOptions& options, double fraction, std::string_view phase) {
+  if (options.progress) options.progress(fraction, phase);
+}
+
+/// Removals (or darts) between two progress reports.
+constexpr std::size_t kRemovalsPerReport = std::size_t{1} << 16;
+
 /// Weighted sample elimination over the graph (its sums are taken as the initial weights): the
 /// candidate with the most crowded neighbourhood goes first, until `count` remain (sequential:
-/// each removal lowers its neighbours' weights). Returns the kept candidates, ascending.
-std::vector<Index> eliminate(poisson_detail::NeighbourGraph near, std::size_t count) {
+/// each removal lowers its neighbours' weights). Calls `done(fraction)` every
+/// kRemovalsPerReport removals. Returns the kept candidates, ascending.
+std::vector<Index> eliminate(poisson_detail::NeighbourGraph near, std::size_t count,
+                             const std::function<void(double)>& done) {
   poisson_detail::EliminationQueue queue(std::move(near.sum), near.original);
-  while (queue.size() > count) {
+  const double removals = static_cast<double>(queue.size() - std::min(count, queue.size()));
+  for (std::size_t pops = 1; queue.size() > count; ++pops) {
+    if (pops % kRemovalsPerReport == 0) done(static_cast<double>(pops) / removals);
     const Index removed = queue.pop();
     const Index next = queue.likely_next();
     __builtin_prefetch(&near.offset[next]);
@@ -118,7 +130,8 @@ OrientedSamples thin_by_darts(const OrientedSamples& candidates, std::size_t cou
 }
 
 /// Exactly `count` of the candidates by weighted sample elimination, with their areas.
-OrientedSamples eliminate_to(const OrientedSamples& candidates, std::size_t count, double area, const NormalRule& rule) {
+OrientedSamples eliminate_to(const OrientedSamples& candidates, std::size_t count, double area, const NormalRule& rule,
+                             const PoissonDiskOptions& options) {
   // Yuksel 2015, §3-4, constants for 2D domains (surfaces): alpha = 8, beta = 0.65, gamma = 1.5.
   const double r_max = poisson_packing_distance(area, count);  // 2·r_max of the paper
   const double r_min =
@@ -127,10 +140,15 @@ OrientedSamples eliminate_to(const OrientedSamples& candidates, std::size_t coun
 
   // Each candidate's weight is the sum over its neighbours closer than r_max (closest first); the
   // graph is freed once the elimination has run.
-  OrientedSamples out = select(
-      candidates,
-      eliminate(poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight), count));
+  poisson_detail::NeighbourGraph near =
+      poisson_detail::neighbours_within(candidates.points, candidates.normals, r_max, rule, weight);
+  report(options, 0.4, "neighbour lists");
+  OrientedSamples out = select(candidates, eliminate(std::move(near), count, [&](double fraction) {
+                                 report(options, 0.4 + 0.45 * fraction, "elimination");
+                               }));
+  report(options, 0.85, "elimination");
   out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * r_max, rule);
+  report(options, 1.0, "areas");
   return out;
 }
 
@@ -143,9 +161,12 @@ OrientedSamples poisson_by_count(const SurfaceMesh& mesh, std::size_t count, std
     throw std::invalid_argument("Poisson-disk sampling of " + std::to_string(count) +
                                 " samples needs too many candidates; lower the count or the oversampling");
   const OrientedSamples uniform = sample_uniform(mesh, static_cast<std::size_t>(m), rng);
+  report(options, 0.1, "candidates");
   const NormalRule rule(options.normal_angle_deg);
-  if (options.candidates == PoissonCandidates::Uniform) return eliminate_to(uniform, count, area, rule);
-  return eliminate_to(thin_by_darts(uniform, count, poisson_packing_distance(area, count), rule), count, area, rule);
+  if (options.candidates == PoissonCandidates::Uniform) return eliminate_to(uniform, count, area, rule, options);
+  const OrientedSamples darts = thin_by_darts(uniform, count, poisson_packing_distance(area, count), rule);
+  report(options, 0.2, "dart throwing");
+  return eliminate_to(darts, count, area, rule, options);
 }
 
 OrientedSamples poisson_by_radius(const SurfaceMesh& mesh, double radius, std::mt19937_64& rng,
@@ -161,14 +182,19 @@ OrientedSamples poisson_by_radius(const SurfaceMesh& mesh, double radius, std::m
                                 " is too small for this surface (it needs over 50 million candidates); "
                                 "use a larger radius");
   const OrientedSamples candidates = sample_uniform(mesh, static_cast<std::size_t>(m), rng);
+  report(options, 0.1, "candidates");
   const NormalRule rule(options.normal_angle_deg);
 
   // Dart throwing: a candidate is kept when no kept sample with an agreeing normal lies closer
   // than the radius (the candidates come in random order).
   const std::vector<Index> kept = poisson_detail::dart_throwing(
-      candidates.points, radius, [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); });
+      candidates.points, radius,
+      [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); },
+      kRemovalsPerReport, [&](double fraction) { report(options, 0.1 + 0.7 * fraction, "dart throwing"); });
   OrientedSamples out = select(candidates, kept);
+  report(options, 0.8, "dart throwing");
   out.areas = poisson_detail::tangent_voronoi_areas(out, area, 0.75 * radius / 0.7, rule);
+  report(options, 1.0, "areas");
   return out;
 }
 

@@ -144,7 +144,8 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
 }
 
 std::vector<Index> dart_throwing(const std::vector<Vec3>& points, double radius,
-                                 const std::function<bool(Index, Index)>& related) {
+                                 const std::function<bool(Index, Index)>& related, std::size_t every,
+                                 const std::function<void(double)>& done) {
   std::vector<Index> kept;
   if (points.empty()) return kept;
   const CellGrid grid(points, radius);
@@ -156,6 +157,7 @@ std::vector<Index> dart_throwing(const std::vector<Vec3>& points, double radius,
   std::vector<Index> first(grid.cells(), kEnd), next(points.size(), kEnd);
   const double r2 = radius * radius;
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (i % every == every - 1) done(static_cast<double>(i) / static_cast<double>(points.size()));
     const Vec3& q = points[i];
     bool free = true;
     for (std::uint32_t c : around[cell[i]]) {

@@ -138,7 +138,10 @@ void SampleStage::check_scene(const Scene& scene) const {
 }
 
 void SampleStage::condition(Shape& shape, Context& ctx) {
-  shape.samples = sample_surface(shape.mesh, settings_, ctx.rng());
+  shape.samples = sample_surface(shape.mesh, settings_, ctx.rng(), [&ctx](double fraction, std::string_view phase) {
+    ctx.check_cancelled();
+    ctx.progress(fraction, phase);
+  });
   std::ostringstream log;
   log.precision(4);
   log << "took " << shape.samples.size() << " samples (" << choice_name(kSampleMethods, settings_.method);

@@ -7,15 +7,18 @@
 
 namespace medax::conditioning {
 
-OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& settings, std::mt19937_64& rng) {
+OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& settings, std::mt19937_64& rng,
+                               const std::function<void(double, std::string_view)>& progress) {
   if (mesh.empty()) throw std::invalid_argument("the shape has no surface mesh to sample");
   switch (settings.method) {
     case SampleMethod::Uniform:
       return services::sample_uniform(mesh, settings.count, rng);
-    case SampleMethod::Poisson:
-      return settings.min_distance > 0
-                 ? services::sample_poisson_radius(mesh, settings.min_distance, rng, settings.poisson)
-                 : services::sample_poisson_count(mesh, settings.count, rng, settings.poisson);
+    case SampleMethod::Poisson: {
+      services::PoissonDiskOptions options = settings.poisson;
+      options.progress = progress;
+      return settings.min_distance > 0 ? services::sample_poisson_radius(mesh, settings.min_distance, rng, options)
+                                       : services::sample_poisson_count(mesh, settings.count, rng, options);
+    }
     case SampleMethod::Vertices: {
       // Vertices used by no face (or only by zero-area faces) have no normal: leave them out.
       const OrientedSamples all = services::vertex_samples(mesh);

@@ -4,8 +4,10 @@
 #include <medax/services/poisson.hpp>
 #include <medax/surface.hpp>
 
+#include <functional>
 #include <random>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,7 +29,9 @@ struct SampleSettings {
   services::PoissonDiskOptions poisson;  ///< poisson: oversampling, candidates, normal angle
 };
 
-/// Throws std::invalid_argument for an empty or zero-area mesh.
-OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& settings, std::mt19937_64& rng);
+/// Throws std::invalid_argument for an empty or zero-area mesh. Poisson-disk sampling reports
+/// to `progress` (PoissonDiskOptions::progress), which may throw to stop it.
+OrientedSamples sample_surface(const SurfaceMesh& mesh, const SampleSettings& settings, std::mt19937_64& rng,
+                               const std::function<void(double, std::string_view)>& progress = {});
 
 }  // namespace medax::conditioning

@@ -365,3 +365,39 @@ TEST_CASE("Poisson-disk from dart-thrown candidates: exact count, blue noise, co
     CHECK(farthest <= 1.05 * spacing);
   }
 }
+
+TEST_CASE("Poisson-disk sampling reports its progress and stops when the report throws", "[sampling]") {
+  // 30k samples by count (120k removals) and a radius giving ~200k candidates: enough for the
+  // periodic reports of the elimination and of the dart throwing.
+  const SurfaceMesh mesh = read_mesh(test::corpus_mesh("fandisk.off"));
+  const double radius = 0.7 * poisson_packing_distance(surface_area(mesh), 20000);
+  struct Stop {};
+  for (const auto& [mode, candidates] : std::vector<std::pair<std::string, PoissonCandidates>>{
+           {"count", PoissonCandidates::Uniform}, {"count", PoissonCandidates::Darts}, {"radius", PoissonCandidates::Uniform}}) {
+    INFO(mode << (candidates == PoissonCandidates::Darts ? ", darts" : ""));
+    const std::string loop = mode == "count" ? "elimination" : "dart throwing";
+    PoissonDiskOptions options;
+    options.candidates = candidates;
+    const auto sample = [&] {
+      std::mt19937_64 rng(8);
+      return mode == "count" ? sample_poisson_count(mesh, 30000, rng, options)
+                             : sample_poisson_radius(mesh, radius, rng, options);
+    };
+    std::vector<std::pair<double, std::string>> reports;
+    options.progress = [&](double fraction, std::string_view phase) { reports.emplace_back(fraction, phase); };
+    const OrientedSamples s = sample();
+    REQUIRE(reports.size() > 3);
+    for (std::size_t k = 1; k < reports.size(); ++k) CHECK(reports[k].first >= reports[k - 1].first);
+    CHECK(reports.back() == std::make_pair(1.0, std::string("areas")));
+    // At least one report from inside the long loop, before its end (the darts leave the
+    // elimination a few hundred removals: only its end is reported).
+    const long inside = candidates == PoissonCandidates::Darts ? 0 : 1;
+    CHECK(std::count_if(reports.begin(), reports.end(), [&](const auto& r) { return r.second == loop; }) >= 1 + inside);
+    options.progress = [&](double, std::string_view phase) {
+      if (phase == loop) throw Stop{};
+    };
+    CHECK_THROWS_AS(sample(), Stop);
+    options.progress = {};
+    CHECK(sample().points == s.points);  // reporting changes nothing
+  }
+}

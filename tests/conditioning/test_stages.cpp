@@ -308,6 +308,23 @@ TEST_CASE("sample: Poisson-disk respects its minimum distance", "[stages]") {
   }
 }
 
+TEST_CASE("sample: Poisson-disk reports progress and stops when the user cancels", "[stages]") {
+  // A context whose user has already pressed Ctrl-C: the first progress report stops the stage.
+  struct CancelledContext : test::RecordingContext {
+    using RecordingContext::RecordingContext;
+    bool cancelled() const override { return true; }
+  };
+  Shape shape;
+  shape.mesh = read_mesh(test::corpus_mesh("fandisk.off"));
+  for (const std::string candidates : {"uniform", "darts"}) {
+    INFO(candidates);
+    auto stage = test::make_stage("sample", {{"count", 2000LL}, {"candidates", candidates}});
+    CancelledContext ctx(1);
+    CHECK_THROWS_AS(test::run_stage(*stage, shape, ctx), Cancelled);
+    CHECK_FALSE(ctx.logged("took"));
+  }
+}
+
 TEST_CASE("sample refuses a shape without a mesh", "[stages]") {
   Scene scene;
   CHECK_THROWS_AS(test::make_stage("sample")->prepare(scene), std::invalid_argument);

@@ -15,7 +15,9 @@
 // independently instead of thinning each other out.
 #include <medax/surface.hpp>
 
+#include <functional>
 #include <random>
+#include <string_view>
 
 namespace medax::services {
 
@@ -38,6 +40,10 @@ struct PoissonDiskOptions {
   double normal_angle_deg = 120.0;
   /// By count: the elimination's candidates (by radius: always the uniform ones).
   PoissonCandidates candidates = PoissonCandidates::Uniform;
+  /// Called now and then from the calling thread with the fraction done (non-decreasing, 1 at
+  /// the end) and the phase (`candidates`, `dart throwing`, `neighbour lists`, `elimination`,
+  /// `areas`). It may throw to stop the sampling: the exception leaves the call, nothing else.
+  std::function<void(double fraction, std::string_view phase)> progress;
   /// When > 0, at most this many threads (a TBB arena of that size); 0: TBB's default.
   int max_threads = 0;
 };

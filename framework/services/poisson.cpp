@@ -109,9 +109,10 @@ auto with_threads(int max_threads, const F& f) {
 }
 
 /// The candidates thinned by dart throwing (PoissonCandidates::Darts) at kDartSpacing packing
-/// spacings, the minimum distance the samples then keep. A maximal set there holds about
-/// 1.1 × count samples on a flat surface (a maximal Poisson-disk set covers 0.55-0.6 of the
-/// plane against the packing's 0.91); five uniform candidates per sample give 1.02 × on koala.
+/// spacings, the minimum distance the samples then keep. A maximal set there would hold about
+/// 1.4 × count samples on a flat surface (a maximal Poisson-disk set covers 0.55-0.6 of the
+/// plane against the packing's 0.91); five uniform candidates per sample are too few to reach
+/// it and give 1.02 × on koala.
 /// Where fewer than count are kept (curved or creased surfaces, fewer candidates), the radius
 /// shrinks by the square root of the shortfall (a maximal set's size goes as 1 / radius²), and a
 /// little more, until enough are; the elimination then removes the few extra.

@@ -56,7 +56,7 @@ double cell_area(const std::vector<Vec3>& points, const std::vector<Vec3>& norma
     clipped.clear();
     for (std::size_t a = 0; a < polygon.size(); ++a) {
       const Eigen::Vector2d& p0 = polygon[a];
-      const Eigen::Vector2d& p1 = polygon[a + 1 == polygon.size() ? 0 : a + 1];
+      const Eigen::Vector2d& p1 = polygon[(a + 1) % polygon.size()];
       const double s0 = p0.dot(w) - c, s1 = p1.dot(w) - c;
       if (s0 <= 0) clipped.push_back(p0);
       if ((s0 < 0) != (s1 < 0) && s0 != s1) clipped.push_back(p0 + (s0 / (s0 - s1)) * (p1 - p0));
@@ -67,7 +67,7 @@ double cell_area(const std::vector<Vec3>& points, const std::vector<Vec3>& norma
   double twice = 0;
   for (std::size_t a = 0; a < polygon.size(); ++a) {
     const Eigen::Vector2d& p0 = polygon[a];
-    const Eigen::Vector2d& p1 = polygon[a + 1 == polygon.size() ? 0 : a + 1];
+    const Eigen::Vector2d& p1 = polygon[(a + 1) % polygon.size()];
     twice += p0.x() * p1.y() - p1.x() * p0.y();
   }
   return polygon.size() < 3 ? 0.0 : 0.5 * std::abs(twice);
@@ -80,30 +80,17 @@ struct Near {
   bool operator<(const Near& o) const { return d2 < o.d2; }
 };
 
-/// The samples of the cells at most `reach` cells from a cell along each axis (in which a search
-/// can vouch for the nearest samples closer than `reach` cells from the sample), coordinates
-/// apart so that the distances from a sample to all of them are one vectorised loop.
+/// The cells at most `reach` cells from a cell along each axis, in which a search can vouch for
+/// the nearest samples closer than `reach` cells from the sample.
 struct Block {
   int reach;
-  bool gathered = false;
-  std::vector<double> x, y, z, d2;
-  std::vector<std::size_t> position;
-
-  void gather(const CellGrid& grid, const std::vector<Vec3>& at, std::size_t c) {
-    for (std::uint32_t cell : grid.within(c, reach)) {
-      const auto [begin, end] = grid.range(cell);
-      for (std::size_t j = begin; j < end; ++j)
-        x.push_back(at[j].x()), y.push_back(at[j].y()), z.push_back(at[j].z()), position.push_back(j);
-    }
-    d2.resize(x.size());
-    gathered = true;
-  }
+  std::vector<std::uint32_t> cells;
 };
 
 /// The k nearest of the grid's point at position `k` (cell c), closest first, as grid
 /// positions in `out`; false when the cells of `block` cannot vouch for the k-d tree's list.
 bool grid_nearest(const CellGrid& grid, const std::vector<Vec3>& at, std::size_t c, std::size_t k, std::size_t count,
-                  Block& block, std::vector<Near>& near, std::vector<std::size_t>& out) {
+                  const Block& block, std::vector<Near>& near, std::vector<std::size_t>& out) {
   const Vec3& q = at[k];
   // Distance from q to the outside of the block of cells, less a margin for the rounding of the
   // cell assignment: the list is vouched for when its last is closer than that.
@@ -115,15 +102,15 @@ bool grid_nearest(const CellGrid& grid, const std::vector<Vec3>& at, std::size_t
   // them, by a relative margin far above the rounding of the squares): with fewer than `count`
   // of them the list cannot be vouched for, and a point left out cannot tie with its last.
   const double kept_below = clearance * clearance * (1 + 1e-9);
-  const std::size_t n = block.x.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    // Summed in this order, as nanoflann does, so distances match a k-d tree's to the bit.
-    const double dx = q.x() - block.x[i], dy = q.y() - block.y[i], dz = q.z() - block.z[i];
-    block.d2[i] = dx * dx + dy * dy + dz * dz;
-  }
   near.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (block.d2[i] < kept_below) near.push_back({block.d2[i], block.position[i]});
+  for (std::uint32_t cell : block.cells) {
+    const auto [begin, end] = grid.range(cell);
+    for (std::size_t j = begin; j < end; ++j) {
+      const double dx = q.x() - at[j].x(), dy = q.y() - at[j].y(), dz = q.z() - at[j].z();
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      if (d2 < kept_below) near.push_back({d2, j});
+    }
+  }
   if (near.size() < count) return false;
   const auto sorted = static_cast<std::ptrdiff_t>(std::min(near.size(), count + 1));
   std::nth_element(near.begin(), near.begin() + sorted - 1, near.end());
@@ -142,14 +129,13 @@ std::vector<double> grid_cell_areas(const OrientedSamples& samples, double cell_
                                     const NormalRule& rule, std::vector<Index>& left) {
   const std::size_t count = std::min(kNearest, samples.size());
   const CellGrid grid(samples.points, cell_side);
-  const std::vector<Vec3> at = in_grid_order(samples.points, grid.order()),
-                          normal = in_grid_order(samples.normals, grid.order());
+  const std::vector<Vec3> at = in_grid_order(samples.points, grid.order()), normal = in_grid_order(samples.normals, grid.order());
   const Polygon start = disk(bound);
   std::vector<double> areas(samples.size(), 0.0);
   std::mutex left_mutex;
   tbb::parallel_for(std::size_t{0}, grid.cells(), [&](std::size_t c) {
-    Block around{1}, wider{2};
-    around.gather(grid, at, c);
+    const Block around{1, grid.within(c, 1)};
+    Block wider{2, {}};
     std::vector<Near> near;
     std::vector<std::size_t> nearest;
     Polygon polygon, clipped;
@@ -159,7 +145,7 @@ std::vector<double> grid_cell_areas(const OrientedSamples& samples, double cell_
       // Where the 27 cells around cannot vouch for the list (a sample far from the others), the
       // 125 cells around may.
       bool found = grid_nearest(grid, at, c, k, count, around, near, nearest);
-      if (!found && !wider.gathered) wider.gather(grid, at, c);
+      if (!found && wider.cells.empty()) wider.cells = grid.within(c, wider.reach);
       if (!found) found = grid_nearest(grid, at, c, k, count, wider, near, nearest);
       if (found)
         areas[grid.order()[k]] = cell_area(at, normal, k, nearest, rule, start, polygon, clipped);

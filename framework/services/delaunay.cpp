@@ -22,6 +22,8 @@
 
 #include <algorithm>
 #include <iterator>
+#include <memory>
+#include <type_traits>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -129,17 +131,29 @@ void prefetch(const T& x, bool for_writing = false) {
 constexpr std::size_t kFetchCellAhead = 16;
 constexpr std::size_t kFetchAroundAhead = 8;
 
-/// A cell handle and the key that orders it.
-template <typename CellHandle>
+/// A cell and the key that orders it (trivially constructible: arrays of them are not zeroed).
+template <typename Cell>
 struct KeyedCell {
   std::array<Index, 4> key;
-  CellHandle cell;
+  Cell* cell;
 };
+
+/// An array of n T left uninitialised: the loops that fill it touch its pages first, in parallel,
+/// where zeroing it would take one thread through them all.
+template <typename T>
+std::unique_ptr<T[]> uninitialised_array(std::size_t n) {
+  static_assert(std::is_trivially_default_constructible_v<T>);
+  return std::unique_ptr<T[]>(new T[n]);
+}
+
+/// The cell type of a cell handle.
+template <typename CellHandle>
+using CellOf = std::remove_reference_t<decltype(*std::declval<CellHandle>())>;
 
 /// Each cell with its corners' ranks sorted ascending (its key), in the container's order.
 template <typename CellHandle>
-std::vector<KeyedCell<CellHandle>> keyed_cells(const std::vector<CellHandle>& cells, bool parallel) {
-  std::vector<KeyedCell<CellHandle>> keyed(cells.size());
+std::unique_ptr<KeyedCell<CellOf<CellHandle>>[]> keyed_cells(const std::vector<CellHandle>& cells, bool parallel) {
+  auto keyed = uninitialised_array<KeyedCell<CellOf<CellHandle>>>(cells.size());
   for_each_chunk(cells.size(), parallel, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i + kFetchAroundAhead < end)
@@ -149,7 +163,7 @@ std::vector<KeyedCell<CellHandle>> keyed_cells(const std::vector<CellHandle>& ce
       key = {c->vertex(0)->info().rank, c->vertex(1)->info().rank, c->vertex(2)->info().rank,
              c->vertex(3)->info().rank};
       std::sort(key.begin(), key.end());
-      keyed[i].cell = c;
+      keyed[i].cell = &*c;
     }
   });
   return keyed;
@@ -161,10 +175,11 @@ std::vector<KeyedCell<CellHandle>> keyed_cells(const std::vector<CellHandle>& ce
 /// no comparison sort of all cells. The counting sort runs on a few slices of the cells at once;
 /// keys are distinct (a cell is its four corners), so the order does not depend on the slices.
 template <typename CellHandle>
-std::vector<CellHandle> cells_in_canonical_order(const std::vector<CellHandle>& cells, std::size_t ranks,
-                                                 bool parallel) {
-  const std::vector<KeyedCell<CellHandle>> keyed = keyed_cells(cells, parallel);
-  const std::size_t n = keyed.size();
+std::vector<CellOf<CellHandle>*> cells_in_canonical_order(const std::vector<CellHandle>& cells,
+                                                                std::size_t ranks, bool parallel) {
+  using Keyed = KeyedCell<CellOf<CellHandle>>;
+  const std::unique_ptr<Keyed[]> keyed = keyed_cells(cells, parallel);
+  const std::size_t n = cells.size();
   const std::size_t slices = parallel ? std::clamp<std::size_t>(usable_threads(), 1, 8) : 1;
   const auto slice_begin = [&](std::size_t s) { return n * s / slices; };
   // next[s][r]: the count of slice s's cells in bucket r, then where the next of them goes.
@@ -179,15 +194,15 @@ std::vector<CellHandle> cells_in_canonical_order(const std::vector<CellHandle>& 
     for (auto& slice : next) at += std::exchange(slice[r], static_cast<std::uint32_t>(at));
     start[r + 1] = at;
   }
-  std::vector<KeyedCell<CellHandle>> sorted(n);
+  const std::unique_ptr<Keyed[]> sorted = uninitialised_array<Keyed>(n);
   for_each_index(slices, parallel, [&](std::size_t s) {
     for (std::size_t i = slice_begin(s); i < slice_begin(s + 1); ++i) sorted[next[s][keyed[i].key[0]]++] = keyed[i];
   });
-  const auto by_key = [](const KeyedCell<CellHandle>& a, const KeyedCell<CellHandle>& b) { return a.key < b.key; };
+  const auto by_key = [](const Keyed& a, const Keyed& b) { return a.key < b.key; };
   for_each_index(ranks, parallel, [&](std::size_t r) {
-    if (start[r + 1] - start[r] > 1) std::sort(sorted.begin() + start[r], sorted.begin() + start[r + 1], by_key);
+    if (start[r + 1] - start[r] > 1) std::sort(&sorted[start[r]], &sorted[start[r + 1]], by_key);
   });
-  std::vector<CellHandle> order(n);
+  std::vector<CellOf<CellHandle>*> order(n);
   for_each_index(n, parallel, [&](std::size_t i) { order[i] = sorted[i].cell; });
   return order;
 }
@@ -230,24 +245,28 @@ void write_cell(DelaunayTetrahedralization& out, std::size_t i, const CellHandle
 }
 
 template <typename Triangulation>
+std::vector<typename Triangulation::Cell_handle> finite_cells(const Triangulation& dt) {
+  std::vector<typename Triangulation::Cell_handle> cells;
+  cells.reserve(dt.number_of_cells());  // finite and infinite: O(1), where counting the finite walks them
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
+  return cells;
+}
+
+template <typename Triangulation>
 DelaunayTetrahedralization extract(Triangulation& dt, std::size_t ranks, bool parallel, bool canonical) {
   if (dt.dimension() < 3)
     throw std::invalid_argument("the points are coplanar or collinear: a 3D Delaunay tetrahedralization needs "
                                 "points spanning three dimensions");
-  std::vector<typename Triangulation::Cell_handle> cells;
-  cells.reserve(dt.number_of_cells());  // finite and infinite: O(1), where counting the finite walks them
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
   // Only the infinite cells keep kInfinite: the finite ones are numbered below.
   std::vector<typename Triangulation::Cell_handle> infinite;
   dt.incident_cells(dt.infinite_vertex(), std::back_inserter(infinite));
   for (const auto& c : infinite) c->info().value = DelaunayTetrahedralization::kInfinite;
-  const std::size_t n = cells.size();
-
-  cells = cells_in_canonical_order(cells, ranks, parallel);
+  const auto ordered = cells_in_canonical_order(finite_cells(dt), ranks, parallel);
+  const std::size_t n = ordered.size();
   for_each_chunk(n, parallel, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (i + kFetchCellAhead < end) prefetch(cells[i + kFetchCellAhead]->info(), true);
-      cells[i]->info().value = static_cast<std::int64_t>(i);
+      if (i + kFetchCellAhead < end) prefetch(ordered[i + kFetchCellAhead]->info(), true);
+      ordered[i]->info().value = static_cast<std::int64_t>(i);
     }
   });
 
@@ -255,15 +274,15 @@ DelaunayTetrahedralization extract(Triangulation& dt, std::size_t ranks, bool pa
   for_each_chunk(n, parallel, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i + kFetchCellAhead < end) {
-        prefetch(*cells[i + kFetchCellAhead]);
-        prefetch(cells[i + kFetchCellAhead]->info());
+        prefetch(*ordered[i + kFetchCellAhead]);
+        prefetch(ordered[i + kFetchCellAhead]->info());
       }
       if (i + kFetchAroundAhead < end)
         for (int k = 0; k < 4; ++k) {
-          prefetch(cells[i + kFetchAroundAhead]->neighbor(k)->info());
-          prefetch(*cells[i + kFetchAroundAhead]->vertex(k));
+          prefetch(ordered[i + kFetchAroundAhead]->neighbor(k)->info());
+          prefetch(*ordered[i + kFetchAroundAhead]->vertex(k));
         }
-      write_cell(out, i, cells[i], canonical);
+      write_cell(out, i, ordered[i], canonical);
     }
   });
   return out;

@@ -2,11 +2,11 @@
 // dense uniform candidates.
 #include <medax/services/poisson.hpp>
 
-#include <medax/services/kdtree.hpp>
 #include <medax/services/sampling.hpp>
 
 #include "poisson_areas.hpp"
 #include "poisson_darts.hpp"
+#include "poisson_grid.hpp"
 #include "poisson_neighbours.hpp"
 #include "poisson_queue.hpp"
 
@@ -213,26 +213,42 @@ OrientedSamples sample_poisson_radius(const SurfaceMesh& mesh, double radius, st
 
 namespace {
 
-/// The distance from sample i to its nearest sample with an agreeing normal, when that is below
-/// `below` (otherwise any value >= below): the k nearest first, then a search within `below`,
-/// then (with nothing to bound it) all samples.
-double nearest_agreeing(const OrientedSamples& samples, const PointIndex& index, const NormalRule& rule,
-                        std::size_t i, double below) {
-  constexpr std::size_t kNearest = 16;
-  const auto near = index.k_nearest(samples.points[i], std::min(kNearest, samples.size()));
-  for (const auto& [j, d] : near)
-    if (j != i && rule.agree(samples.normals[i], samples.normals[j])) return d;  // the list is sorted
-  if (near.size() == samples.size()) return std::numeric_limits<double>::infinity();
-  double best = std::numeric_limits<double>::infinity();
-  if (std::isfinite(below)) {
-    for (const auto& [j, d] : index.within(samples.points[i], below))
-      if (j != i && rule.agree(samples.normals[i], samples.normals[j])) best = std::min(best, d);
-  } else {
-    for (std::size_t j = 0; j < samples.size(); ++j)
-      if (j != i && rule.agree(samples.normals[i], samples.normals[j]))
-        best = std::min(best, (samples.points[i] - samples.points[j]).norm());
-  }
-  return best;
+/// The distance from sample i to its nearest other sample with an agreeing normal (infinity when
+/// there is none), by brute force.
+double nearest_agreeing(const OrientedSamples& samples, const NormalRule& rule, std::size_t i) {
+  double best2 = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < samples.size(); ++j)
+    if (j != i && rule.agree(samples.normals[i], samples.normals[j]))
+      best2 = std::min(best2, (samples.points[i] - samples.points[j]).squaredNorm());
+  return std::sqrt(best2);
+}
+
+/// The smallest distance between two samples with agreeing normals, if it is at most `side`
+/// (otherwise any value above `side`): every such pair lies in two neighbouring cells of a grid
+/// that wide, so only those are compared, cell by cell in parallel (the minimum is the same
+/// whatever the split).
+double closest_pair_within(const OrientedSamples& samples, const NormalRule& rule, double side) {
+  const poisson_detail::CellGrid grid(samples.points, side);
+  const std::vector<Vec3> at = poisson_detail::in_grid_order(samples.points, grid.order());
+  const std::vector<Vec3> normal = poisson_detail::in_grid_order(samples.normals, grid.order());
+  const double none = std::numeric_limits<double>::infinity();
+  const double best2 = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, grid.cells()), none,
+      [&](const tbb::blocked_range<std::size_t>& cells, double best) {
+        for (std::size_t c = cells.begin(); c != cells.end(); ++c) {
+          const auto [begin, end] = grid.range(c);
+          for (const std::uint32_t other : grid.around(c)) {
+            if (other == poisson_detail::CellGrid::kNone) continue;
+            const auto [first, last] = grid.range(other);
+            for (std::size_t k = begin; k < end; ++k)
+              for (std::size_t j = first; j < last; ++j)
+                if (j != k && rule.agree(normal[k], normal[j])) best = std::min(best, (at[k] - at[j]).squaredNorm());
+          }
+        }
+        return best;
+      },
+      [](double a, double b) { return std::min(a, b); });
+  return std::sqrt(best2);
 }
 
 }  // namespace
@@ -241,17 +257,25 @@ double min_sample_distance(const OrientedSamples& samples, double normal_angle_d
   const double none = std::numeric_limits<double>::infinity();
   if (samples.size() < 2) return none;
   const NormalRule rule(normal_angle_deg);
-  const PointIndex index(samples.points);
-  // The minimum is exact whatever the split: a block's bound only ever skips samples whose
-  // nearest agreeing sample lies farther than a distance already found.
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, samples.size()), none,
-      [&](const tbb::blocked_range<std::size_t>& range, double best) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i)
-          best = std::min(best, nearest_agreeing(samples, index, rule, i, best));
-        return best;
-      },
-      [](double a, double b) { return std::min(a, b); });
+  // A few samples' nearest distances bound the answer from above: a grid that wide, or wider,
+  // then finds it. Cells four bounds wide (about three spacings on blue noise) hold a dozen
+  // samples: fewer cells to look up against more pairs to compare, the fastest trade measured
+  // (1M koala samples, 2 threads: 0.40-0.48 s; two bounds 0.59-0.61 s, one 1.0 s).
+  constexpr std::size_t kProbes = 16;
+  constexpr double kCellsPerBound = 4;
+  double bound = none;
+  for (std::size_t p = 0; p < kProbes; ++p)
+    bound = std::min(bound, nearest_agreeing(samples, rule, p * samples.size() / kProbes));
+  if (bound == 0) return 0;  // a probe has a partner at its very position
+  if (std::isfinite(bound)) return closest_pair_within(samples, rule, kCellsPerBound * bound);
+  // No probe has a partner: widen the grid until a pair shows or it spans all samples.
+  Vec3 lo = samples.points.front(), hi = lo;
+  for (const Vec3& p : samples.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double extent = (hi - lo).maxCoeff();
+  for (double side = extent > 0 ? extent / std::cbrt(static_cast<double>(samples.size())) : 1.0;; side *= 2) {
+    const double best = closest_pair_within(samples, rule, side);
+    if (best <= side || side >= extent) return best;
+  }
 }
 
 }  // namespace medax::services

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -89,6 +90,66 @@ TEST_CASE("Poisson-disk samples the two sides of a thin plate independently", "[
   CHECK(bottom > 150);
   CHECK(min_sample_distance(s, 180.0) < 0.02);  // across the plate, if normals are ignored
   CHECK(min_sample_distance(s) > 0.6 * poisson_packing_distance(surface_area(plate), 400));
+}
+
+/// The smallest distance between two samples whose normals agree (dot above cos(angle)),
+/// over every pair.
+double brute_force_min_distance(const OrientedSamples& s, double angle_deg) {
+  const double min_dot = std::cos(angle_deg * M_PI / 180.0);
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j)
+      if (angle_deg >= 180.0 || s.normals[i].dot(s.normals[j]) > min_dot)
+        best = std::min(best, (s.points[i] - s.points[j]).norm());
+  return best;
+}
+
+TEST_CASE("min_sample_distance finds the closest agreeing pair that brute force finds", "[sampling]") {
+  const SurfaceMesh fandisk = read_mesh(test::corpus_mesh("fandisk.off"));
+  const SurfaceMesh plate = testing::make_box(0.5, 0.5, 0.005, 8);
+  std::mt19937_64 rng(11);
+  const OrientedSamples blue = sample_poisson_count(fandisk, 3000, rng);
+  const OrientedSamples white = sample_uniform(fandisk, 3000, rng);
+  const OrientedSamples sides = sample_poisson_count(plate, 800, rng);
+  for (const double angle : {120.0, 180.0, 30.0}) {
+    INFO("normal angle " << angle);
+    CHECK(min_sample_distance(blue, angle) == brute_force_min_distance(blue, angle));
+    CHECK(min_sample_distance(white, angle) == brute_force_min_distance(white, angle));
+    CHECK(min_sample_distance(sides, angle) == brute_force_min_distance(sides, angle));
+  }
+  SECTION("duplicates are 0 apart") {
+    OrientedSamples twice = blue;
+    twice.points.push_back(blue.points[1234]);
+    twice.normals.push_back(blue.normals[1234]);
+    CHECK(min_sample_distance(twice) == 0.0);
+  }
+  SECTION("no agreeing pair: infinity") {
+    OrientedSamples three;
+    three.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    three.normals = {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};  // 90 degrees apart
+    CHECK(std::isinf(min_sample_distance(three, 60.0)));
+    CHECK(min_sample_distance(three, 120.0) == 1.0);
+  }
+  SECTION("pairs only among samples the first probes miss") {
+    // Every fourth sample (those the search probes first) has a normal of its own, spread over the
+    // sphere; the rest share one: the probes have no partner within 10 degrees, and the grid widens
+    // until the others meet.
+    std::mt19937_64 positions(3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Vec3 shared = Vec3(1, 2, 3).normalized();
+    OrientedSamples mixed;
+    for (int i = 0; i < 64; ++i) {
+      mixed.points.push_back(Vec3(unit(positions), unit(positions), unit(positions)));
+      const double z = 1 - (i / 4 + 0.5) / 8, azimuth = 2.39996 * (i / 4);  // a Fibonacci sphere of 16
+      const double r = std::sqrt(1 - z * z);
+      mixed.normals.push_back(i % 4 ? shared : Vec3(r * std::cos(azimuth), r * std::sin(azimuth), z));
+    }
+    const double min_dot = std::cos(10.0 * M_PI / 180.0);
+    for (int probe = 0; probe < 64; probe += 4)
+      for (int j = 0; j < 64; ++j) REQUIRE((j == probe || mixed.normals[probe].dot(mixed.normals[j]) <= min_dot));
+    CHECK(std::isfinite(brute_force_min_distance(mixed, 10.0)));
+    CHECK(min_sample_distance(mixed, 10.0) == brute_force_min_distance(mixed, 10.0));
+  }
 }
 
 TEST_CASE("Poisson-disk areas follow the local spacing", "[sampling]") {

@@ -136,8 +136,8 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
   tbb::parallel_for(std::size_t{0}, grid.cells(), [&](std::size_t c) { around[c] = grid.around(c); });
   count_rows(grid, around, search, out.offset);
   std::partial_sum(out.offset.begin(), out.offset.end(), out.offset.begin());
-  out.index.resize(out.offset.back());
-  out.value.resize(out.offset.back());
+  out.index.reset(new Index[out.offset.back()]);
+  out.value.reset(new double[out.offset.back()]);
   out.sum.resize(points.size());
   fill_rows(grid, around, search, weigh, out);
   return out;

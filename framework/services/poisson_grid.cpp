@@ -3,7 +3,6 @@
 #include <medax/services/morton.hpp>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 
@@ -25,7 +24,7 @@ CellGrid::CellGrid(const std::vector<Vec3>& points, double side) {
     const auto c = cell_of(points[i]);
     morton[i] = {morton_code(c[0], c[1], c[2]), static_cast<Index>(i)};
   });
-  tbb::parallel_sort(morton.begin(), morton.end());
+  stable_sort_by_code(morton);
   order_.resize(points.size());
   for (std::size_t k = 0; k < morton.size(); ++k) {
     order_[k] = morton[k].second;

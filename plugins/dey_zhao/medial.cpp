@@ -9,7 +9,6 @@
 #include <medax/union_find.hpp>
 
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <atomic>
@@ -68,7 +67,7 @@ std::vector<Index> spatial_order(const std::vector<Vec3>& P, bool parallel) {
   };
   if (parallel) {
     tbb::parallel_for(std::size_t{0}, n, key);
-    tbb::parallel_sort(keys.begin(), keys.end());
+    services::stable_sort_by_code(keys);
   } else {
     for (std::size_t i = 0; i < n; ++i) key(i);
     std::sort(keys.begin(), keys.end());

@@ -37,6 +37,13 @@ Polygon disk(double bound) {
   return polygon;
 }
 
+/// The squared distance from the origin (the sample) to the polygon's farthest vertex.
+double farthest_vertex2(const Polygon& polygon) {
+  double farthest = 0;
+  for (const Eigen::Vector2d& p : polygon) farthest = std::max(farthest, p.squaredNorm());
+  return farthest;
+}
+
 /// The area of the tangent Voronoi cell of points[i] among points[near[..]] (closest first;
 /// i itself is skipped), `polygon` and `clipped` being scratch space.
 double cell_area(const std::vector<Vec3>& points, const std::vector<Vec3>& normals, std::size_t i,
@@ -46,12 +53,16 @@ double cell_area(const std::vector<Vec3>& points, const std::vector<Vec3>& norma
   const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   const Vec3 u = n.cross(helper).normalized(), v = n.cross(u);
   polygon = start;
+  double reach2 = farthest_vertex2(polygon);
   for (std::size_t j : near) {
     if (j == i || !rule.agree(n, normals[j])) continue;
     const Vec3 q = points[j] - points[i];
     const Eigen::Vector2d w(q.dot(u), q.dot(v));
     const double c = 0.5 * w.squaredNorm();
     if (!(c > 0)) continue;
+    // A bisector at least twice the farthest vertex away (with a margin far above the rounding)
+    // leaves every vertex strictly inside: the clip would copy the polygon as it is.
+    if (c > 2 * reach2 * (1 + 1e-9)) continue;
     // Keep the half-plane x·w ≤ |w|²/2 (the side of sample i).
     clipped.clear();
     for (std::size_t a = 0; a < polygon.size(); ++a) {
@@ -63,6 +74,7 @@ double cell_area(const std::vector<Vec3>& points, const std::vector<Vec3>& norma
     }
     polygon.swap(clipped);
     if (polygon.size() < 3) break;
+    reach2 = farthest_vertex2(polygon);
   }
   double twice = 0;
   for (std::size_t a = 0; a < polygon.size(); ++a) {

@@ -33,11 +33,12 @@ class KeptAround {
     position_.push_back(static_cast<Index>(k));
   }
   /// Whether no gathered dart with a normal agreeing with normal[k] lies closer than sqrt(r2) to
-  /// at[k].
+  /// at[k]. The last added first: the darts of k's own cell, the likeliest to be that close, are
+  /// added after the gathered ones, so most candidates that fail do so within a few tests.
   bool free(const std::vector<Vec3>& at, const std::vector<Vec3>& normal, std::size_t k, double r2,
             const NormalRule& rule) const {
     const double qx = at[k].x(), qy = at[k].y(), qz = at[k].z();
-    for (std::size_t i = 0; i < x_.size(); ++i) {
+    for (std::size_t i = x_.size(); i-- > 0;) {
       const double dx = qx - x_[i], dy = qy - y_[i], dz = qz - z_[i];
       if (dx * dx + dy * dy + dz * dz < r2 && rule.agree(normal[k], normal[position_[i]])) return false;
     }

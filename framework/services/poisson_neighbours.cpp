@@ -156,20 +156,34 @@ std::vector<Index> dart_throwing(const std::vector<Vec3>& points, double radius,
   constexpr Index kEnd = ~Index{0};
   std::vector<Index> first(grid.cells(), kEnd), next(points.size(), kEnd);
   const double r2 = radius * radius;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i % every == every - 1) done(static_cast<double>(i) / static_cast<double>(points.size()));
+  const auto conflicts = [&](std::size_t i) {
     const Vec3& q = points[i];
-    bool free = true;
     for (std::uint32_t c : around[cell[i]]) {
       if (c == CellGrid::kNone) continue;
-      for (Index j = first[c]; j != kEnd && free; j = next[j])
-        free = !((points[j] - q).squaredNorm() < r2 && related(static_cast<Index>(i), j));
-      if (!free) break;
+      for (Index j = first[c]; j != kEnd; j = next[j])
+        if ((points[j] - q).squaredNorm() < r2 && related(static_cast<Index>(i), j)) return true;
     }
-    if (!free) continue;
-    kept.push_back(static_cast<Index>(i));
-    next[i] = first[cell[i]];
-    first[cell[i]] = static_cast<Index>(i);
+    return false;
+  };
+  // The points go in batches of `every`. A point of a batch that conflicts with one kept before
+  // the batch is out whatever comes before it in the batch: those tests run in parallel (the lists
+  // are only read). The others are then tested in order against every point kept so far, the
+  // batch's included: the same points as one pass in order, most of the tests done in parallel
+  // once the surface is mostly covered.
+  every = std::max<std::size_t>(every, 1);
+  std::vector<char> out_early(every);
+  for (std::size_t begin = 0; begin < points.size(); begin += every) {
+    const std::size_t end = std::min(points.size(), begin + every);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) out_early[i - begin] = conflicts(i);
+    });
+    for (std::size_t i = begin; i < end; ++i) {
+      if (out_early[i - begin] || conflicts(i)) continue;
+      kept.push_back(static_cast<Index>(i));
+      next[i] = first[cell[i]];
+      first[cell[i]] = static_cast<Index>(i);
+    }
+    if (end < points.size()) done(static_cast<double>(end) / static_cast<double>(points.size()));
   }
   return kept;
 }

@@ -52,8 +52,9 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
                                  const NormalRule& rule, const EliminationWeight& weigh);
 
 /// Dart throwing: goes through the points in index order and keeps each one that is no closer
-/// than `radius` to any point kept before it for which `related(i, j)` holds; calls
-/// `done(fraction)` every `every` points. Returns the kept indices, ascending.
+/// than `radius` to any point kept before it for which `related(i, j)` holds (in batches of
+/// `every` points, most tests in parallel, the same points); calls `done(fraction)` after each
+/// batch. `related` is called from several threads. Returns the kept indices, ascending.
 std::vector<Index> dart_throwing(const std::vector<Vec3>& points, double radius,
                                  const std::function<bool(Index, Index)>& related, std::size_t every,
                                  const std::function<void(double)>& done);

@@ -152,6 +152,34 @@ TEST_CASE("min_sample_distance finds the closest agreeing pair that brute force 
   }
 }
 
+TEST_CASE("dart throwing keeps what one pass in order keeps, whatever its batches", "[sampling]") {
+  // Uniform candidates of fandisk (random order, creases: normals matter) at 0.7 packing spacings
+  // of 1500 samples, against the definition: each candidate kept unless a kept one before it with
+  // an agreeing normal is closer than the radius.
+  const SurfaceMesh fandisk = read_mesh(test::corpus_mesh("fandisk.off"));
+  std::mt19937_64 rng(9);
+  const OrientedSamples candidates = sample_uniform(fandisk, 15000, rng);
+  const double radius = 0.7 * poisson_packing_distance(surface_area(fandisk), 1500);
+  const poisson_detail::NormalRule rule(120.0);
+  const auto related = [&](Index i, Index j) { return rule.agree(candidates.normals[i], candidates.normals[j]); };
+  std::vector<Index> expected;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    bool free = true;
+    for (std::size_t a = 0; a < expected.size() && free; ++a)
+      free = !((candidates.points[expected[a]] - candidates.points[i]).squaredNorm() < radius * radius &&
+               related(static_cast<Index>(i), expected[a]));
+    if (free) expected.push_back(static_cast<Index>(i));
+  }
+  REQUIRE(expected.size() > 1000);
+  for (const std::size_t every : {std::size_t{1}, std::size_t{97}, std::size_t{4096}, std::size_t{1} << 20}) {
+    INFO("batches of " << every);
+    std::size_t reports = 0;
+    CHECK(poisson_detail::dart_throwing(candidates.points, radius, related, every, [&](double) { ++reports; }) ==
+          expected);
+    CHECK(reports == (candidates.size() - 1) / every);
+  }
+}
+
 TEST_CASE("Poisson-disk areas follow the local spacing", "[sampling]") {
   // On a sphere the tangent-plane Voronoi cells are close to the mean area A / n.
   const SurfaceMesh sphere = testing::make_sphere(1.0, 4);

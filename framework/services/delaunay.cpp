@@ -175,8 +175,8 @@ std::unique_ptr<KeyedCell<CellOf<CellHandle>>[]> keyed_cells(const std::vector<C
 /// no comparison sort of all cells. The counting sort runs on a few slices of the cells at once;
 /// keys are distinct (a cell is its four corners), so the order does not depend on the slices.
 template <typename CellHandle>
-std::vector<CellOf<CellHandle>*> cells_in_canonical_order(const std::vector<CellHandle>& cells,
-                                                                std::size_t ranks, bool parallel) {
+std::vector<CellOf<CellHandle>*> cells_in_canonical_order(const std::vector<CellHandle>& cells, std::size_t ranks,
+                                                          bool parallel) {
   using Keyed = KeyedCell<CellOf<CellHandle>>;
   const std::unique_ptr<Keyed[]> keyed = keyed_cells(cells, parallel);
   const std::size_t n = cells.size();
@@ -244,6 +244,7 @@ void write_cell(DelaunayTetrahedralization& out, std::size_t i, const CellHandle
   out.circumradii[i] = std::sqrt(CGAL::squared_distance(cc, p0));
 }
 
+/// The finite cells, in the container's order.
 template <typename Triangulation>
 std::vector<typename Triangulation::Cell_handle> finite_cells(const Triangulation& dt) {
   std::vector<typename Triangulation::Cell_handle> cells;

@@ -274,7 +274,7 @@ double min_sample_distance(const OrientedSamples& samples, double normal_angle_d
   const double extent = (hi - lo).maxCoeff();
   for (double side = extent > 0 ? extent / std::cbrt(static_cast<double>(samples.size())) : 1.0;; side *= 2) {
     const double best = closest_pair_within(samples, rule, side);
-    if (best <= side || side >= extent) return best;
+    if (best <= side || !(side < extent)) return best;  // (a NaN extent ends it too)
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include "delaunay_free_lists.hpp"
 #include "delaunay_lock_grid.hpp"
+#include "uninitialised.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -137,14 +138,6 @@ struct KeyedCell {
   std::array<Index, 4> key;
   Cell* cell;
 };
-
-/// An array of n T left uninitialised: the loops that fill it touch its pages first, in parallel,
-/// where zeroing it would take one thread through them all.
-template <typename T>
-std::unique_ptr<T[]> uninitialised_array(std::size_t n) {
-  static_assert(std::is_trivially_default_constructible_v<T>);
-  return std::unique_ptr<T[]>(new T[n]);
-}
 
 /// The cell type of a cell handle.
 template <typename CellHandle>

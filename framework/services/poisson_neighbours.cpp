@@ -1,6 +1,7 @@
 #include "poisson_neighbours.hpp"
 
 #include "poisson_grid.hpp"
+#include "uninitialised.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -136,8 +137,8 @@ NeighbourGraph neighbours_within(const std::vector<Vec3>& points, const std::vec
   tbb::parallel_for(std::size_t{0}, grid.cells(), [&](std::size_t c) { around[c] = grid.around(c); });
   count_rows(grid, around, search, out.offset);
   std::partial_sum(out.offset.begin(), out.offset.end(), out.offset.begin());
-  out.index.reset(new Index[out.offset.back()]);
-  out.value.reset(new double[out.offset.back()]);
+  out.index = uninitialised_array<Index>(out.offset.back());
+  out.value = uninitialised_array<double>(out.offset.back());
   out.sum.resize(points.size());
   fill_rows(grid, around, search, weigh, out);
   return out;

@@ -141,7 +141,8 @@ std::vector<double> grid_cell_areas(const OrientedSamples& samples, double cell_
                                     const NormalRule& rule, std::vector<Index>& left) {
   const std::size_t count = std::min(kNearest, samples.size());
   const CellGrid grid(samples.points, cell_side);
-  const std::vector<Vec3> at = in_grid_order(samples.points, grid.order()), normal = in_grid_order(samples.normals, grid.order());
+  const std::vector<Vec3> at = in_grid_order(samples.points, grid.order());
+  const std::vector<Vec3> normal = in_grid_order(samples.normals, grid.order());
   const Polygon start = disk(bound);
   std::vector<double> areas(samples.size(), 0.0);
   std::mutex left_mutex;

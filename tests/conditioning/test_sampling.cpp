@@ -227,7 +227,8 @@ TEST_CASE("Poisson-disk by count covers the surface: every point lies near a sam
     const double spacing = poisson_packing_distance(surface_area(mesh), n);
     const PointIndex index(s.points);
     double farthest = 0;
-    for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points) farthest = std::max(farthest, index.nearest(p).second);
+    for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points)
+      farthest = std::max(farthest, index.nearest(p).second);
     INFO("farthest probe " << farthest / spacing << " spacings from a sample");
     CHECK(farthest <= spacing);
     CHECK(min_sample_distance(s) >= 0.65 * spacing);  // measured 0.68-0.69
@@ -449,7 +450,8 @@ TEST_CASE("Poisson-disk from dart-thrown candidates: exact count, blue noise, co
     std::mt19937_64 probe_rng(99);
     const PointIndex index(s.points);
     double farthest = 0;
-    for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points) farthest = std::max(farthest, index.nearest(p).second);
+    for (const Vec3& p : sample_uniform(mesh, 40000, probe_rng).points)
+      farthest = std::max(farthest, index.nearest(p).second);
     INFO("farthest probe " << farthest / spacing << " spacings from a sample");
     CHECK(farthest <= 1.05 * spacing);
   }
@@ -461,8 +463,9 @@ TEST_CASE("Poisson-disk sampling reports its progress and stops when the report 
   const SurfaceMesh mesh = read_mesh(test::corpus_mesh("fandisk.off"));
   const double radius = 0.7 * poisson_packing_distance(surface_area(mesh), 20000);
   struct Stop {};
-  for (const auto& [mode, candidates] : std::vector<std::pair<std::string, PoissonCandidates>>{
-           {"count", PoissonCandidates::Uniform}, {"count", PoissonCandidates::Darts}, {"radius", PoissonCandidates::Uniform}}) {
+  const std::vector<std::pair<std::string, PoissonCandidates>> modes{
+      {"count", PoissonCandidates::Uniform}, {"count", PoissonCandidates::Darts}, {"radius", PoissonCandidates::Uniform}};
+  for (const auto& [mode, candidates] : modes) {
     INFO(mode << (candidates == PoissonCandidates::Darts ? ", darts" : ""));
     const std::string loop = mode == "count" ? "elimination" : "dart throwing";
     PoissonDiskOptions options;
